@@ -1,0 +1,125 @@
+#pragma once
+// The one entry point the operator assembly calls: the integrals of a kernel over one flat
+// panel with unit density, for one target x (definitions and sign conventions in
+// bem/panel_integral_values.hpp).
+//
+// Rule selection, by the distance ratio η = |x − centroid| / diameter (diameter = longest edge)
+// and, for Yukawa, κ·diameter (docs/quadrature.md gives the measured errors behind every
+// threshold in far_field_thresholds):
+//  * Yukawa and |x − centroid| − radius > 40/κ: every entry is below e^{−40} ≈ 4e−18 of the
+//    panel's near-field magnitude and is returned as exactly 0 (YukawaKernel::
+//    negligible_exponent);
+//  * η below the smallest threshold, or κ·diameter too large for a polynomial rule: the polar
+//    scheme (bem/polar_quadrature.hpp), exact radial integrals, valid on and near the panel;
+//  * otherwise a Gauss rule on the triangle (bem/triangle_quadrature.hpp) whose degree
+//    decreases as η grows, chosen so that the relative error stays below 1e−8.
+// Kernel ∈ {LaplaceKernel, YukawaKernel}.
+
+#include <array>
+#include <cmath>
+
+#include <Eigen/Core>
+
+#include "bem/panel.hpp"
+#include "bem/panel_integral_values.hpp"
+#include "bem/polar_quadrature.hpp"
+#include "bem/triangle_quadrature.hpp"
+
+namespace bemshape::bem {
+
+/// One row of the far-field rule table: the rule is accurate to 1e−8 (relative) for every
+/// target with η ≥ min_ratio and, for Yukawa, κ·diameter ≤ max_kappa_diameter.
+struct FarFieldRule {
+  double min_ratio;
+  double max_kappa_diameter;
+  const TriangleRule* rule;
+};
+
+/// The table, cheapest rule first. Built once.
+const std::array<FarFieldRule, 8>& far_field_rules();
+
+/// The Gauss rule for distance ratio η = ratio and κ·diameter (0 for Laplace), or nullptr when
+/// the polar scheme is needed.
+inline const TriangleRule* select_far_field_rule(double ratio, double kappa_diameter) {
+  for (const FarFieldRule& row : far_field_rules())
+    if (ratio >= row.min_ratio && kappa_diameter <= row.max_kappa_diameter) return row.rule;
+  return nullptr;
+}
+
+/// Single and double layer (and gradients) of `panel` at x by the triangle rule `rule`.
+/// Accurate only for targets away from the panel (see select_far_field_rule).
+template <class Kernel>
+PanelIntegrals gauss_panel_integrals(const Kernel& kernel, const Panel& panel,
+                                     const Eigen::Vector3d& x, const TriangleRule& rule,
+                                     bool with_gradients) {
+  PanelIntegrals out;
+  const double d = (x - panel.corners[0]).dot(panel.normal);
+  double sl = 0.0, dl_factor = 0.0;
+  Eigen::Vector3d g_sl = Eigen::Vector3d::Zero(), g_dl = Eigen::Vector3d::Zero();
+  for (int q = 0; q < rule.size(); ++q) {
+    const auto k = static_cast<size_t>(q);
+    const Eigen::Vector3d y = panel.corners[0] + rule.xi[k] * panel.edge1 + rule.eta[k] * panel.edge2;
+    const Eigen::Vector3d diff = x - y;
+    const double r = diff.norm();
+    const double w = rule.weight[k];
+    const double g1 = kernel.radial_derivative(r);
+    sl += w * kernel.value(r);
+    // ∂G/∂n_y = G'(r)(y − x)·n/r = −d G'(r)/r.
+    dl_factor += w * g1 / r;
+    if (with_gradients) {
+      const double h = g1 / r;                                               // H = G'/r
+      const double dh = (kernel.second_radial_derivative(r) * r - g1) / (r * r);  // H'
+      g_sl += (w * h) * diff;
+      // ∇_x ∂G/∂n_y = −n H(r) − d H'(r)(x − y)/r.
+      g_dl += -(w * h) * panel.normal - (w * d * dh / r) * diff;
+    }
+  }
+  out.single_layer = panel.area * sl;
+  out.double_layer = -d * panel.area * dl_factor;
+  if (with_gradients) {
+    out.single_layer_gradient = panel.area * g_sl;
+    out.double_layer_gradient = panel.area * g_dl;
+  }
+  return out;
+}
+
+/// Single layer, double layer and (if with_gradients) their gradients ∇_x for the panel and
+/// target x, to 1e−8 relative accuracy (docs/quadrature.md).
+template <class Kernel>
+PanelIntegrals integrate_panel(const Kernel& kernel, const Panel& panel, const Eigen::Vector3d& x,
+                               bool with_gradients = false) {
+  const double dist = (x - panel.centroid).norm();
+  double kappa_diameter = 0.0;
+  if constexpr (Kernel::has_exponential_decay) {
+    if (dist - panel.radius > kernel.cutoff_distance()) return {};
+    kappa_diameter = kernel.kappa() * panel.diameter;
+  }
+  const TriangleRule* rule = select_far_field_rule(dist / panel.diameter, kappa_diameter);
+  if (rule == nullptr) return polar_panel_integrals(kernel, panel, x, with_gradients);
+  return gauss_panel_integrals(kernel, panel, x, *rule, with_gradients);
+}
+
+/// The single layer alone (the far-field hot path of dense and compressed assembly): same
+/// rule selection and accuracy as integrate_panel, no double layer.
+template <class Kernel>
+double single_layer(const Kernel& kernel, const Panel& panel, const Eigen::Vector3d& x) {
+  const double dist = (x - panel.centroid).norm();
+  double kappa_diameter = 0.0;
+  if constexpr (Kernel::has_exponential_decay) {
+    if (dist - panel.radius > kernel.cutoff_distance()) return 0.0;
+    kappa_diameter = kernel.kappa() * panel.diameter;
+  }
+  const TriangleRule* rule = select_far_field_rule(dist / panel.diameter, kappa_diameter);
+  if (rule == nullptr) return polar_panel_integrals(kernel, panel, x, false).single_layer;
+  double sum = 0.0;
+  const int n = rule->size();
+  for (int q = 0; q < n; ++q) {
+    const auto k = static_cast<size_t>(q);
+    const Eigen::Vector3d y =
+        panel.corners[0] + rule->xi[k] * panel.edge1 + rule->eta[k] * panel.edge2;
+    sum += rule->weight[k] * kernel.value((x - y).norm());
+  }
+  return panel.area * sum;
+}
+
+}  // namespace bemshape::bem
