@@ -28,7 +28,8 @@ void add_oriented(Triangles& tris, const std::vector<Eigen::Vector3d>& pts, int 
 
 SurfaceMesh to_mesh(const std::vector<Eigen::Vector3d>& pts, const Triangles& tris) {
   Eigen::MatrixX3d v(static_cast<Eigen::Index>(pts.size()), 3);
-  for (size_t i = 0; i < pts.size(); ++i) v.row(static_cast<Eigen::Index>(i)) = pts[i];
+  for (size_t i = 0; i < pts.size(); ++i)
+    v.row(static_cast<Eigen::Index>(i)) = pts[i];
   Eigen::MatrixX3i f(static_cast<Eigen::Index>(tris.size()), 3);
   for (size_t i = 0; i < tris.size(); ++i)
     f.row(static_cast<Eigen::Index>(i)) << tris[i][0], tris[i][1], tris[i][2];
@@ -44,20 +45,18 @@ void require_positive(double value, const char* what) {
 
 SurfaceMesh make_geodesic_sphere(double radius, int frequency, const Eigen::Vector3d& center) {
   require_positive(radius, "sphere radius");
-  if (frequency < 1) throw InputError("geodesic sphere frequency must be at least 1");
+  if (frequency < 1)
+    throw InputError("geodesic sphere frequency must be at least 1");
   const double phi = 0.5 * (1.0 + std::sqrt(5.0));
   const std::array<Eigen::Vector3d, 12> ico = {
-      Eigen::Vector3d(-1, phi, 0), Eigen::Vector3d(1, phi, 0),   Eigen::Vector3d(-1, -phi, 0),
-      Eigen::Vector3d(1, -phi, 0), Eigen::Vector3d(0, -1, phi),  Eigen::Vector3d(0, 1, phi),
-      Eigen::Vector3d(0, -1, -phi), Eigen::Vector3d(0, 1, -phi), Eigen::Vector3d(phi, 0, -1),
-      Eigen::Vector3d(phi, 0, 1),  Eigen::Vector3d(-phi, 0, -1), Eigen::Vector3d(-phi, 0, 1)};
-  const std::array<std::array<int, 3>, 20> ico_faces = {{{0, 11, 5}, {0, 5, 1},  {0, 1, 7},
-                                                         {0, 7, 10}, {0, 10, 11}, {1, 5, 9},
-                                                         {5, 11, 4}, {11, 10, 2}, {10, 7, 6},
-                                                         {7, 1, 8},  {3, 9, 4},  {3, 4, 2},
-                                                         {3, 2, 6},  {3, 6, 8},  {3, 8, 9},
-                                                         {4, 9, 5},  {2, 4, 11}, {6, 2, 10},
-                                                         {8, 6, 7},  {9, 8, 1}}};
+      Eigen::Vector3d(-1, phi, 0),  Eigen::Vector3d(1, phi, 0),   Eigen::Vector3d(-1, -phi, 0),
+      Eigen::Vector3d(1, -phi, 0),  Eigen::Vector3d(0, -1, phi),  Eigen::Vector3d(0, 1, phi),
+      Eigen::Vector3d(0, -1, -phi), Eigen::Vector3d(0, 1, -phi),  Eigen::Vector3d(phi, 0, -1),
+      Eigen::Vector3d(phi, 0, 1),   Eigen::Vector3d(-phi, 0, -1), Eigen::Vector3d(-phi, 0, 1)};
+  const std::array<std::array<int, 3>, 20> ico_faces = {
+      {{0, 11, 5},  {0, 5, 1},  {0, 1, 7},  {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+       {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
+       {3, 8, 9},   {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}}};
   const int n = frequency;
   // A lattice point of an icosahedron face is identified exactly by its integer barycentric
   // weights on the icosahedron's corner vertices, so points on shared edges coincide.
@@ -105,7 +104,8 @@ int geodesic_frequency_for_edge(double radius, double max_edge) {
   // The longest edge of a frequency-n geodesic sphere is close to 1.3·R/n (measured over
   // n = 1…64); search upward from that estimate for the first frequency that satisfies it.
   int n = std::max(1, static_cast<int>(std::floor(1.0 * radius / max_edge)));
-  while (make_geodesic_sphere(radius, n).max_edge_length() > max_edge) ++n;
+  while (make_geodesic_sphere(radius, n).max_edge_length() > max_edge)
+    ++n;
   return n;
 }
 
@@ -114,14 +114,16 @@ SurfaceMesh make_spherical_shell(double inner_radius, double outer_radius, int i
   require_positive(inner_radius, "inner radius");
   if (!(outer_radius > inner_radius))
     throw InputError("spherical shell: the outer radius must exceed the inner radius");
-  return concatenated(make_geodesic_sphere(outer_radius, outer_frequency),
-                      with_flipped_orientation(make_geodesic_sphere(inner_radius, inner_frequency)));
+  return concatenated(
+      make_geodesic_sphere(outer_radius, outer_frequency),
+      with_flipped_orientation(make_geodesic_sphere(inner_radius, inner_frequency)));
 }
 
 SurfaceMesh make_box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, double max_edge) {
   require_positive(max_edge, "maximum edge length");
   const Eigen::Vector3d extent = hi - lo;
-  if (!(extent.minCoeff() > 0.0)) throw InputError("box: hi must exceed lo in every coordinate");
+  if (!(extent.minCoeff() > 0.0))
+    throw InputError("box: hi must exceed lo in every coordinate");
   std::array<int, 3> cells;
   for (int d = 0; d < 3; ++d)
     cells[d] = std::max(1, static_cast<int>(std::ceil(extent(d) / max_edge - 1e-9)));
@@ -218,7 +220,8 @@ SurfaceMesh make_cylinder(double radius, double length, double max_edge) {
     }
   };
   auto radial = [](const Eigen::Vector3d& c) { return Eigen::Vector3d(c.x(), c.y(), 0.0); };
-  for (int k = 0; k < n_z; ++k) stitch(rows[k], row_offset[k], rows[k + 1], row_offset[k + 1], radial);
+  for (int k = 0; k < n_z; ++k)
+    stitch(rows[k], row_offset[k], rows[k + 1], row_offset[k + 1], radial);
   // Caps: concentric rings whose point counts shrink linearly towards a centre vertex.
   const int n_rings = std::max(1, static_cast<int>(std::ceil(radius / max_edge)));
   for (int side = 0; side < 2; ++side) {
@@ -229,7 +232,8 @@ SurfaceMesh make_cylinder(double radius, double length, double max_edge) {
     double outer_offset = side == 0 ? row_offset.front() : row_offset.back();
     for (int ring = n_rings - 1; ring >= 1; --ring) {
       const double r = radius * ring / n_rings;
-      const int count = std::max(3, static_cast<int>(std::lround(n_theta * double(ring) / n_rings)));
+      const int count =
+          std::max(3, static_cast<int>(std::lround(n_theta * double(ring) / n_rings)));
       std::vector<int> inner;
       for (int m = 0; m < count; ++m) {
         const double t = two_pi * m / count;

@@ -46,7 +46,8 @@ SurfaceMesh::SurfaceMesh(Eigen::MatrixX3d vertices, Eigen::MatrixX3i faces)
 
 BoundingBox SurfaceMesh::bounding_box() const {
   BoundingBox box;
-  if (vertices_.rows() == 0) return box;
+  if (vertices_.rows() == 0)
+    return box;
   box.min = vertices_.colwise().minCoeff().transpose();
   box.max = vertices_.colwise().maxCoeff().transpose();
   return box;
@@ -68,17 +69,19 @@ double SurfaceMesh::max_edge_length() const {
 }
 
 double SurfaceMesh::mean_edge_length() const {
-  if (faces_.rows() == 0) return 0.0;
+  if (faces_.rows() == 0)
+    return 0.0;
   double sum = 0.0;
   for (Eigen::Index f = 0; f < faces_.rows(); ++f)
-    for (int k = 0; k < 3; ++k) sum += (corner(f, (k + 1) % 3) - corner(f, k)).norm();
+    for (int k = 0; k < 3; ++k)
+      sum += (corner(f, (k + 1) % 3) - corner(f, k)).norm();
   return sum / (3.0 * static_cast<double>(faces_.rows()));
 }
 
 SurfaceMesh transformed(const SurfaceMesh& mesh, const Eigen::Matrix3d& rotation,
                         const Eigen::Vector3d& translation, double scale) {
-  Eigen::MatrixX3d v = (scale * mesh.vertices() * rotation.transpose()).rowwise() +
-                       translation.transpose();
+  Eigen::MatrixX3d v =
+      (scale * mesh.vertices() * rotation.transpose()).rowwise() + translation.transpose();
   return SurfaceMesh(std::move(v), mesh.faces());
 }
 

@@ -1,0 +1,59 @@
+// The bemshape program: one CLI11 subcommand per file (check_command.cpp, ...), and the one
+// place where exceptions become messages on stderr and exit codes (exit_codes.hpp):
+//   InputError, ResourceError, CLI usage errors → 2;  NumericalError, internal errors → 3.
+// Every error is printed as one line "bemshape: error: <what>" followed by any details.
+#include <CLI/CLI.hpp>
+#include <exception>
+#include <iostream>
+#include <new>
+#include <string>
+
+#include "apps/check_command.hpp"
+#include "apps/exit_codes.hpp"
+#include "core/errors.hpp"
+
+namespace {
+
+int print_error(const std::string& message, int code) {
+  std::cerr << "bemshape: error: " << message << '\n';
+  return code;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace bemshape;
+  CLI::App app{
+      "bemshape: local wall thickness, orientation and skeleton of solid parts given as closed "
+      "triangle meshes (STL, OBJ, OFF, PLY). Lengths are in the units of the input file."};
+  app.set_version_flag("--version", std::string("bemshape ") + BEMSHAPE_VERSION);
+  app.require_subcommand(1, 1);
+  app.fallthrough(false);
+
+  int exit_code = apps::kExitSuccess;
+  apps::register_check_command(app, exit_code);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    return print_error(std::string(e.what()) + " (run 'bemshape --help')", apps::kExitBadInput);
+  } catch (const InputError& e) {
+    return print_error(e.what(), apps::kExitBadInput);
+  } catch (const ResourceError& e) {
+    return print_error(e.what(), apps::kExitBadInput);
+  } catch (const NumericalError& e) {
+    return print_error(e.what(), apps::kExitNumericalFailure);
+  } catch (const std::bad_alloc&) {
+    return print_error("out of memory", apps::kExitBadInput);
+  } catch (const std::exception& e) {
+    return print_error(std::string("internal error (please report): ") + e.what(),
+                       apps::kExitNumericalFailure);
+  }
+  return exit_code;
+}

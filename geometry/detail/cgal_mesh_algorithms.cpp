@@ -1,0 +1,167 @@
+// The one translation unit that compiles CGAL's Polygon_mesh_processing (slow to compile).
+#include "geometry/detail/cgal_mesh_algorithms.hpp"
+
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
+#include <CGAL/AABB_triangle_primitive.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/detect_features.h>
+#include <CGAL/Polygon_mesh_processing/remesh.h>
+#include <CGAL/Polygon_mesh_processing/self_intersections.h>
+#include <CGAL/Surface_mesh.h>
+#include <vector>
+
+#include "core/errors.hpp"
+
+namespace bemshape::geometry::detail {
+namespace {
+
+namespace PMP = CGAL::Polygon_mesh_processing;
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Point = Kernel::Point_3;
+using Mesh = CGAL::Surface_mesh<Point>;
+using VertexIndex = Mesh::Vertex_index;
+using FaceIndex = Mesh::Face_index;
+using EdgeIndex = Mesh::Edge_index;
+
+/// Builds a Surface_mesh; faces that cannot be added (non-manifold) are skipped and their
+/// input indices returned through `skipped`. Face i of the result is input face face_of[i].
+Mesh to_surface_mesh(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces,
+                     std::vector<Eigen::Index>& face_of, std::size_t& skipped) {
+  Mesh mesh;
+  std::vector<VertexIndex> vh(static_cast<std::size_t>(vertices.rows()));
+  for (Eigen::Index v = 0; v < vertices.rows(); ++v)
+    vh[static_cast<std::size_t>(v)] =
+        mesh.add_vertex(Point(vertices(v, 0), vertices(v, 1), vertices(v, 2)));
+  skipped = 0;
+  for (Eigen::Index f = 0; f < faces.rows(); ++f) {
+    const FaceIndex fi = mesh.add_face(vh[static_cast<std::size_t>(faces(f, 0))],
+                                       vh[static_cast<std::size_t>(faces(f, 1))],
+                                       vh[static_cast<std::size_t>(faces(f, 2))]);
+    if (fi == Mesh::null_face())
+      ++skipped;
+    else
+      face_of.push_back(f);
+  }
+  return mesh;
+}
+
+void to_arrays(const Mesh& mesh, Eigen::MatrixX3d& vertices, Eigen::MatrixX3i& faces) {
+  std::vector<int> index(mesh.num_vertices(), -1);
+  vertices.resize(static_cast<Eigen::Index>(mesh.number_of_vertices()), 3);
+  int next = 0;
+  for (VertexIndex v : mesh.vertices()) {
+    const Point& p = mesh.point(v);
+    vertices.row(next) << p.x(), p.y(), p.z();
+    index[static_cast<std::size_t>(v.idx())] = next++;
+  }
+  faces.resize(static_cast<Eigen::Index>(mesh.number_of_faces()), 3);
+  Eigen::Index f = 0;
+  for (FaceIndex fi : mesh.faces()) {
+    int k = 0;
+    for (VertexIndex v : CGAL::vertices_around_face(mesh.halfedge(fi), mesh))
+      if (k < 3)
+        faces(f, k++) = index[static_cast<std::size_t>(v.idx())];
+    if (k != 3)
+      throw InternalError("isotropic remeshing produced a non-triangular face");
+    ++f;
+  }
+}
+
+/// Counts intersecting pairs, keeping only the first (memory stays O(1) however many).
+struct PairCounter {
+  std::size_t* count;
+  std::pair<FaceIndex, FaceIndex>* first;
+  PairCounter& operator*() { return *this; }
+  PairCounter& operator++() { return *this; }
+  PairCounter operator++(int) { return *this; }
+  PairCounter& operator=(const std::pair<FaceIndex, FaceIndex>& pair) {
+    if ((*count)++ == 0)
+      *first = pair;
+    return *this;
+  }
+};
+
+}  // namespace
+
+CgalSelfIntersections cgal_self_intersections(const Eigen::MatrixX3d& vertices,
+                                              const Eigen::MatrixX3i& faces) {
+  CgalSelfIntersections result;
+  std::vector<Eigen::Index> face_of;
+  const Mesh mesh = to_surface_mesh(vertices, faces, face_of, result.faces_not_tested);
+  std::pair<FaceIndex, FaceIndex> first;
+  PMP::self_intersections(mesh, PairCounter{&result.pairs, &first});
+  if (result.pairs > 0)
+    result.first = {face_of[static_cast<std::size_t>(first.first.idx())],
+                    face_of[static_cast<std::size_t>(first.second.idx())]};
+  return result;
+}
+
+CgalRemeshResult cgal_isotropic_remesh(const Eigen::MatrixX3d& vertices,
+                                       const Eigen::MatrixX3i& faces,
+                                       const CgalRemeshParameters& parameters) {
+  std::vector<Eigen::Index> face_of;
+  std::size_t skipped = 0;
+  Mesh mesh = to_surface_mesh(vertices, faces, face_of, skipped);
+  if (skipped > 0 || !CGAL::is_closed(mesh))
+    throw InputError("remeshing needs a closed manifold surface; prepare the mesh first");
+
+  // The input surface, kept for projecting the vertices of the final edge splits.
+  std::vector<Kernel::Triangle_3> input_triangles;
+  for (FaceIndex f : mesh.faces()) {
+    const auto h = mesh.halfedge(f);
+    input_triangles.emplace_back(mesh.point(mesh.source(h)), mesh.point(mesh.target(h)),
+                                 mesh.point(mesh.target(mesh.next(h))));
+  }
+  using Primitive =
+      CGAL::AABB_triangle_primitive<Kernel, std::vector<Kernel::Triangle_3>::const_iterator>;
+  CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>> input_tree(input_triangles.begin(),
+                                                                   input_triangles.end());
+  input_tree.accelerate_distance_queries();
+
+  CgalRemeshResult result;
+  auto sharp = mesh.add_property_map<EdgeIndex, bool>("e:sharp", false).first;
+  auto corner = mesh.add_property_map<VertexIndex, bool>("v:corner", false).first;
+  auto degree = mesh.add_property_map<VertexIndex, int>("v:sharp_degree", 0).first;
+  PMP::detect_sharp_edges(mesh, parameters.sharp_angle_degrees, sharp,
+                          CGAL::parameters::vertex_feature_degree_map(degree));
+  for (EdgeIndex e : mesh.edges())
+    if (sharp[e])
+      ++result.sharp_edges;
+  // Vertices where sharp polylines end, branch or meet (corners of the part) never move;
+  // the polylines themselves are only split, never collapsed or flipped, so they stay
+  // exactly where the input had them.
+  for (VertexIndex v : mesh.vertices())
+    corner[v] = degree[v] != 0 && degree[v] != 2;
+
+  PMP::isotropic_remeshing(mesh.faces(), parameters.target_edge, mesh,
+                           CGAL::parameters::number_of_iterations(parameters.iterations)
+                               .edge_is_constrained_map(sharp)
+                               .vertex_is_constrained_map(corner)
+                               .protect_constraints(false)
+                               .collapse_constraints(false)
+                               .relax_constraints(false));
+
+  // CGAL splits edges longer than 4/3 of the target, so a few edges end up to 1.33× long;
+  // split those above max_edge and put the new vertices back onto the input surface.
+  mesh.collect_garbage();  // so that the vertices the splits create are appended
+  const std::size_t before = mesh.number_of_vertices();
+  std::vector<EdgeIndex> edges(mesh.edges().begin(), mesh.edges().end());
+  PMP::split_long_edges(edges, parameters.max_edge, mesh,
+                        CGAL::parameters::edge_is_constrained_map(sharp));
+  for (VertexIndex v : mesh.vertices()) {
+    if (static_cast<std::size_t>(v.idx()) < before)
+      continue;
+    // A vertex on a sharp edge is the midpoint of a straight piece of the input polyline.
+    bool on_sharp = false;
+    for (auto h : CGAL::halfedges_around_target(mesh.halfedge(v), mesh))
+      on_sharp = on_sharp || sharp[mesh.edge(h)];
+    if (!on_sharp)
+      mesh.point(v) = input_tree.closest_point(mesh.point(v));
+  }
+  mesh.collect_garbage();
+  to_arrays(mesh, result.vertices, result.faces);
+  return result;
+}
+
+}  // namespace bemshape::geometry::detail

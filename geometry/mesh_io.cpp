@@ -1,0 +1,450 @@
+#include "geometry/mesh_io.hpp"
+
+#include <Eigen/Geometry>
+#include <OpenMesh/Core/IO/IOInstances.hh>
+#include <OpenMesh/Core/IO/IOManager.hh>
+#include <OpenMesh/Core/IO/importer/BaseImporter.hh>
+#include <OpenMesh/Core/System/omstream.hh>
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+#include <system_error>
+#include <vector>
+
+#include "core/errors.hpp"
+
+namespace bemshape::geometry {
+namespace {
+
+namespace fs = std::filesystem;
+using OpenMesh::FaceHandle;
+using OpenMesh::HalfedgeHandle;
+using OpenMesh::VertexHandle;
+
+// A binary STL is an 80-byte header, a uint32 triangle count and 50 bytes per triangle.
+constexpr std::uint64_t kStlHeaderBytes = 84;
+constexpr std::uint64_t kStlTriangleBytes = 50;
+
+[[noreturn]] void fail(const fs::path& path, const std::string& what) {
+  throw InputError(path.string() + ": " + what);
+}
+
+std::string lowercase(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return s;
+}
+
+/// Collects OpenMesh's vertices and faces without building any connectivity, so that
+/// non-manifold and inconsistently oriented faces survive to be reported.
+class SoupImporter final : public OpenMesh::IO::BaseImporter {
+ public:
+  std::vector<Eigen::Vector3d> points;
+  std::vector<std::array<int, 3>> triangles;
+  std::size_t polygons_triangulated = 0;
+  std::size_t triangles_from_polygons = 0;
+  std::size_t short_faces = 0;
+  // First face corner that refers to a vertex the file does not have (-1: none).
+  long long bad_index = -1;
+
+  VertexHandle add_vertex(const OpenMesh::Vec3f& p) override {
+    return push(Eigen::Vector3d(p[0], p[1], p[2]));
+  }
+  VertexHandle add_vertex(const OpenMesh::Vec3d& p) override {
+    return push(Eigen::Vector3d(p[0], p[1], p[2]));
+  }
+  VertexHandle add_vertex() override { return push(Eigen::Vector3d::Zero()); }
+  void set_point(VertexHandle vh, const OpenMesh::Vec3f& p) override {
+    if (vh.is_valid() && static_cast<std::size_t>(vh.idx()) < points.size())
+      points[static_cast<std::size_t>(vh.idx())] = Eigen::Vector3d(p[0], p[1], p[2]);
+  }
+
+  FaceHandle add_face(const VHandles& corners) override {
+    for (const VertexHandle& vh : corners) {
+      if (!vh.is_valid() || static_cast<std::size_t>(vh.idx()) >= points.size()) {
+        if (bad_index < 0)
+          bad_index = vh.idx();
+        return FaceHandle();
+      }
+    }
+    if (corners.size() < 3) {
+      ++short_faces;
+      return FaceHandle();
+    }
+    // Fan triangulation from the first corner: exact for convex planar polygons, which is
+    // what OBJ/OFF/PLY exporters write; it is reported so the user knows it happened.
+    if (corners.size() > 3) {
+      ++polygons_triangulated;
+      triangles_from_polygons += corners.size() - 2;
+    }
+    for (std::size_t k = 1; k + 1 < corners.size(); ++k)
+      triangles.push_back({corners[0].idx(), corners[k].idx(), corners[k + 1].idx()});
+    return FaceHandle(static_cast<int>(triangles.size()) - 1);
+  }
+
+  // Everything below is attribute or connectivity data a triangle soup does not keep.
+  HalfedgeHandle add_edge(VertexHandle, VertexHandle) override { return HalfedgeHandle(); }
+  FaceHandle add_face(HalfedgeHandle) override { return FaceHandle(); }
+  void add_face_texcoords(FaceHandle, VertexHandle, const std::vector<OpenMesh::Vec2f>&) override {}
+  void add_face_texcoords(FaceHandle, VertexHandle, const std::vector<OpenMesh::Vec3f>&) override {}
+  void set_face_texindex(FaceHandle, int) override {}
+  void set_halfedge(VertexHandle, HalfedgeHandle) override {}
+  void set_normal(VertexHandle, const OpenMesh::Vec3f&) override {}
+  void set_normal(VertexHandle, const OpenMesh::Vec3d&) override {}
+  void set_color(VertexHandle, const OpenMesh::Vec3uc&) override {}
+  void set_color(VertexHandle, const OpenMesh::Vec4uc&) override {}
+  void set_color(VertexHandle, const OpenMesh::Vec3f&) override {}
+  void set_color(VertexHandle, const OpenMesh::Vec4f&) override {}
+  void set_texcoord(VertexHandle, const OpenMesh::Vec2f&) override {}
+  void set_status(VertexHandle, const OpenMesh::Attributes::StatusInfo&) override {}
+  void set_next(HalfedgeHandle, HalfedgeHandle) override {}
+  void set_face(HalfedgeHandle, FaceHandle) override {}
+  void request_face_texcoords2D() override {}
+  void set_texcoord(HalfedgeHandle, const OpenMesh::Vec2f&) override {}
+  void set_texcoord(VertexHandle, const OpenMesh::Vec3f&) override {}
+  void set_texcoord(HalfedgeHandle, const OpenMesh::Vec3f&) override {}
+  void set_status(HalfedgeHandle, const OpenMesh::Attributes::StatusInfo&) override {}
+  void set_color(OpenMesh::EdgeHandle, const OpenMesh::Vec3uc&) override {}
+  void set_color(OpenMesh::EdgeHandle, const OpenMesh::Vec4uc&) override {}
+  void set_color(OpenMesh::EdgeHandle, const OpenMesh::Vec3f&) override {}
+  void set_color(OpenMesh::EdgeHandle, const OpenMesh::Vec4f&) override {}
+  void set_status(OpenMesh::EdgeHandle, const OpenMesh::Attributes::StatusInfo&) override {}
+  void set_normal(FaceHandle, const OpenMesh::Vec3f&) override {}
+  void set_normal(FaceHandle, const OpenMesh::Vec3d&) override {}
+  void set_color(FaceHandle, const OpenMesh::Vec3uc&) override {}
+  void set_color(FaceHandle, const OpenMesh::Vec4uc&) override {}
+  void set_color(FaceHandle, const OpenMesh::Vec3f&) override {}
+  void set_color(FaceHandle, const OpenMesh::Vec4f&) override {}
+  void set_status(FaceHandle, const OpenMesh::Attributes::StatusInfo&) override {}
+  void add_texture_information(int, std::string) override {}
+
+  size_t n_vertices() const override { return points.size(); }
+  size_t n_faces() const override { return triangles.size(); }
+  size_t n_edges() const override { return 0; }
+
+ private:
+  VertexHandle push(const Eigen::Vector3d& p) {
+    points.push_back(p);
+    return VertexHandle(static_cast<int>(points.size()) - 1);
+  }
+};
+
+/// Silences OpenMesh's own error and log streams while a file is read: library code never
+/// prints, and every failure is reported through InputError instead.
+class QuietOpenMesh {
+ public:
+  QuietOpenMesh() : err_(omerr().is_enabled()), log_(omlog().is_enabled()) {
+    omerr().disable();
+    omlog().disable();
+  }
+  ~QuietOpenMesh() {
+    if (err_)
+      omerr().enable();
+    if (log_)
+      omlog().enable();
+  }
+  QuietOpenMesh(const QuietOpenMesh&) = delete;
+  QuietOpenMesh& operator=(const QuietOpenMesh&) = delete;
+
+ private:
+  bool err_, log_;
+};
+
+std::string read_all(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in)
+    fail(path, std::string("cannot be opened for reading: ") + std::strerror(errno));
+  std::ostringstream buffer;
+  buffer << in.rdbuf();
+  if (in.bad())
+    fail(path, "read error");
+  return buffer.str();
+}
+
+/// Splits text into whitespace-separated tokens, one line at a time, calling
+/// visit(line_number, tokens).
+template <typename Visit>
+void for_each_line(std::string_view text, Visit&& visit) {
+  std::size_t line_number = 0, pos = 0;
+  std::vector<std::string_view> tokens;
+  while (pos < text.size()) {
+    std::size_t end = text.find('\n', pos);
+    if (end == std::string_view::npos)
+      end = text.size();
+    std::string_view line = text.substr(pos, end - pos);
+    ++line_number;
+    tokens.clear();
+    std::size_t i = 0;
+    while (i < line.size()) {
+      while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i])))
+        ++i;
+      std::size_t j = i;
+      while (j < line.size() && !std::isspace(static_cast<unsigned char>(line[j])))
+        ++j;
+      if (j > i)
+        tokens.push_back(line.substr(i, j - i));
+      i = j;
+    }
+    visit(line_number, tokens);
+    pos = end + 1;
+  }
+}
+
+/// Parses a whole token as a finite double; explains what is wrong otherwise.
+bool parse_coordinate(std::string_view token, double& value, std::string& why) {
+  const char* first = token.data();
+  if (!token.empty() && token.front() == '+')
+    ++first;
+  const auto [ptr, ec] = std::from_chars(first, token.data() + token.size(), value);
+  if (ec != std::errc() || ptr != token.data() + token.size()) {
+    // Formatted through a stream: GCC 12 warns falsely (-Wrestrict) about string
+    // concatenation with a one-character literal here.
+    std::ostringstream msg;
+    msg << '\'' << token << "' is not a number";
+    why = msg.str();
+    return false;
+  }
+  if (!std::isfinite(value)) {
+    std::ostringstream msg;
+    msg << "coordinate '" << token << "' is not finite";
+    why = msg.str();
+    return false;
+  }
+  return true;
+}
+
+/// Checks every `vertex x y z` line of an ASCII STL and that each facet has three of them.
+void lint_ascii_stl(const fs::path& path, std::string_view text) {
+  std::size_t facets = 0, vertices = 0;
+  for_each_line(text, [&](std::size_t line, const std::vector<std::string_view>& tokens) {
+    if (tokens.empty())
+      return;
+    const std::string keyword = lowercase(std::string(tokens[0]));
+    if (keyword == "facet")
+      ++facets;
+    if (keyword != "vertex")
+      return;
+    ++vertices;
+    if (tokens.size() != 4)
+      fail(path, "line " + std::to_string(line) + ": a vertex needs 3 coordinates, found " +
+                     std::to_string(tokens.size() - 1));
+    for (int k = 1; k <= 3; ++k) {
+      double value;
+      std::string why;
+      if (!parse_coordinate(tokens[static_cast<std::size_t>(k)], value, why))
+        fail(path, "line " + std::to_string(line) + ": " + why);
+    }
+  });
+  if (facets == 0)
+    fail(path, "ASCII STL contains no facets");
+  if (vertices != 3 * facets)
+    fail(path, "ASCII STL has " + std::to_string(facets) + " facets but " +
+                   std::to_string(vertices) +
+                   " vertex lines (3 per facet expected): the file is truncated or corrupt");
+}
+
+/// Checks every `v x y z [w]` line of an OBJ file.
+void lint_obj(const fs::path& path, std::string_view text) {
+  for_each_line(text, [&](std::size_t line, const std::vector<std::string_view>& tokens) {
+    if (tokens.empty() || tokens[0] != "v")
+      return;
+    if (tokens.size() < 4)
+      fail(path, "line " + std::to_string(line) + ": a vertex needs 3 coordinates, found " +
+                     std::to_string(tokens.size() - 1));
+    for (int k = 1; k <= 3; ++k) {
+      double value;
+      std::string why;
+      if (!parse_coordinate(tokens[static_cast<std::size_t>(k)], value, why))
+        fail(path, "line " + std::to_string(line) + ": " + why);
+    }
+  });
+}
+
+/// Decides binary vs ASCII STL the way OpenMesh does (a binary file's size is exactly
+/// 84 + 50·n), but refuses a size mismatch up front instead of reading n triangles.
+bool stl_is_binary(const fs::path& path, std::string_view text) {
+  const std::uint64_t size = text.size();
+  if (size >= kStlHeaderBytes) {
+    std::uint32_t count = 0;
+    std::memcpy(&count, text.data() + 80, sizeof count);  // little-endian on every target
+    if (size == kStlHeaderBytes + kStlTriangleBytes * count) {
+      if (count == 0)
+        fail(path, "binary STL contains no triangles");
+      return true;
+    }
+    const std::size_t first = text.find_first_not_of(" \t\r\n");
+    const bool says_solid =
+        first != std::string_view::npos && lowercase(std::string(text.substr(first, 5))) == "solid";
+    if (says_solid)
+      return false;
+    fail(path, "binary STL header announces " + std::to_string(count) + " triangles (" +
+                   std::to_string(kStlHeaderBytes + kStlTriangleBytes * count) +
+                   " bytes) but the file has " + std::to_string(size) +
+                   " bytes: the file is truncated or not an STL file");
+  }
+  const std::size_t first = text.find_first_not_of(" \t\r\n");
+  if (first == std::string_view::npos)
+    fail(path, "the file contains only white space");
+  if (lowercase(std::string(text.substr(first, 5))) != "solid")
+    fail(path, "too short for a binary STL (" + std::to_string(size) +
+                   " bytes) and not an ASCII STL (no 'solid' keyword)");
+  return false;
+}
+
+/// Binary STL coordinates must be finite; checked before OpenMesh merges corners (its
+/// merging compares coordinates, which NaN would break).
+void check_binary_stl_coordinates(const fs::path& path, std::string_view text) {
+  std::uint32_t count = 0;
+  std::memcpy(&count, text.data() + 80, sizeof count);
+  for (std::uint32_t t = 0; t < count; ++t) {
+    const char* facet = text.data() + kStlHeaderBytes + kStlTriangleBytes * t;
+    for (int k = 0; k < 9; ++k) {
+      float value;
+      std::memcpy(&value, facet + 12 + 4 * k, sizeof value);  // skip the stored normal
+      if (!std::isfinite(value)) {
+        std::ostringstream msg;
+        msg << "triangle " << t << " has a non-finite coordinate (" << value
+            << "): the file is corrupt";
+        fail(path, msg.str());
+      }
+    }
+  }
+}
+
+}  // namespace
+
+TriangleSoup read_triangle_soup(const fs::path& path) {
+  std::error_code ec;
+  const fs::file_status status = fs::status(path, ec);
+  if (ec || !fs::exists(status))
+    fail(path, "no such file");
+  if (fs::is_directory(status))
+    fail(path, "is a directory, not a mesh file");
+  if (!fs::is_regular_file(status))
+    fail(path, "is not a regular file");
+
+  const std::string extension = lowercase(path.extension().string());
+  TriangleSoup soup;
+  if (extension == ".stl")
+    soup.format = "STL";
+  else if (extension == ".obj")
+    soup.format = "OBJ";
+  else if (extension == ".off")
+    soup.format = "OFF";
+  else if (extension == ".ply")
+    soup.format = "PLY";
+  else
+    fail(path, "unsupported file extension '" + path.extension().string() +
+                   "': use .stl, .obj, .off or .ply");
+
+  const std::string text = read_all(path);
+  if (text.empty())
+    fail(path, "the file is empty");
+
+  if (soup.format == "STL") {
+    if (stl_is_binary(path, text)) {
+      soup.format = "binary STL";
+      check_binary_stl_coordinates(path, text);
+    } else {
+      soup.format = "ASCII STL";
+      lint_ascii_stl(path, text);
+    }
+  } else if (soup.format == "OBJ") {
+    lint_obj(path, text);
+  }
+
+  SoupImporter importer;
+  bool ok = false;
+  {
+    const QuietOpenMesh quiet;
+    OpenMesh::IO::Options options;
+    ok = OpenMesh::IO::IOManager().read(path.string(), importer, options);
+  }
+  if (!ok)
+    fail(path, "cannot be parsed as " + soup.format + ": the file is malformed");
+  if (importer.bad_index >= 0)
+    fail(path, "a face refers to vertex " + std::to_string(importer.bad_index) +
+                   " but the file has only " + std::to_string(importer.points.size()) +
+                   " vertices");
+
+  soup.vertices.resize(static_cast<Eigen::Index>(importer.points.size()), 3);
+  for (std::size_t v = 0; v < importer.points.size(); ++v) {
+    const Eigen::Vector3d& p = importer.points[v];
+    if (!p.allFinite()) {
+      std::ostringstream msg;
+      msg << "vertex " << v << " has a non-finite coordinate (" << p.x() << ", " << p.y() << ", "
+          << p.z() << "): the file is corrupt";
+      fail(path, msg.str());
+    }
+    soup.vertices.row(static_cast<Eigen::Index>(v)) = p.transpose();
+  }
+  soup.faces.resize(static_cast<Eigen::Index>(importer.triangles.size()), 3);
+  for (std::size_t f = 0; f < importer.triangles.size(); ++f)
+    for (int k = 0; k < 3; ++k)
+      soup.faces(static_cast<Eigen::Index>(f), k) =
+          importer.triangles[f][static_cast<std::size_t>(k)];
+  soup.polygons_triangulated = importer.polygons_triangulated;
+  soup.triangles_from_polygons = importer.triangles_from_polygons;
+  soup.collapsed_faces_dropped = importer.short_faces;
+
+  if (soup.format == "binary STL") {
+    std::uint32_t count = 0;
+    std::memcpy(&count, text.data() + 80, sizeof count);
+    soup.corners_in_file = 3 * static_cast<std::size_t>(count);
+    soup.collapsed_faces_dropped += count - std::min<std::size_t>(count, importer.triangles.size());
+  } else if (soup.format == "ASCII STL") {
+    std::size_t facets = 0;
+    for_each_line(text, [&](std::size_t, const std::vector<std::string_view>& tokens) {
+      if (!tokens.empty() && lowercase(std::string(tokens[0])) == "facet")
+        ++facets;
+    });
+    soup.corners_in_file = 3 * facets;
+    soup.collapsed_faces_dropped += facets - std::min(facets, importer.triangles.size());
+  } else {
+    soup.corners_in_file = 3 * importer.triangles.size();
+  }
+  if (soup.faces.rows() == 0)
+    fail(path, "the file contains no triangles");
+  return soup;
+}
+
+void write_binary_stl(const fs::path& path, const Eigen::MatrixX3d& vertices,
+                      const Eigen::MatrixX3i& faces) {
+  std::ofstream out(path, std::ios::binary);
+  if (!out)
+    fail(path, std::string("cannot be opened for writing: ") + std::strerror(errno));
+  std::array<char, 80> header{};
+  const char title[] = "bemshape binary STL";
+  std::memcpy(header.data(), title, sizeof title - 1);
+  out.write(header.data(), header.size());
+  const auto count = static_cast<std::uint32_t>(faces.rows());
+  out.write(reinterpret_cast<const char*>(&count), sizeof count);
+  for (Eigen::Index f = 0; f < faces.rows(); ++f) {
+    const Eigen::Vector3d a = vertices.row(faces(f, 0)), b = vertices.row(faces(f, 1)),
+                          c = vertices.row(faces(f, 2));
+    Eigen::Vector3d n = (b - a).cross(c - a);
+    if (n.norm() > 0.0)
+      n.normalize();
+    std::array<float, 12> values{};
+    for (int k = 0; k < 3; ++k) {
+      values[static_cast<std::size_t>(k)] = static_cast<float>(n(k));
+      values[static_cast<std::size_t>(3 + k)] = static_cast<float>(a(k));
+      values[static_cast<std::size_t>(6 + k)] = static_cast<float>(b(k));
+      values[static_cast<std::size_t>(9 + k)] = static_cast<float>(c(k));
+    }
+    out.write(reinterpret_cast<const char*>(values.data()), sizeof(float) * values.size());
+    const std::uint16_t attribute = 0;
+    out.write(reinterpret_cast<const char*>(&attribute), sizeof attribute);
+  }
+  if (!out)
+    fail(path, "write error");
+}
+
+}  // namespace bemshape::geometry

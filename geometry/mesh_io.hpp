@@ -1,0 +1,58 @@
+#pragma once
+// Reading triangle meshes from STL (ASCII and binary), OBJ, OFF and PLY files.
+//
+// The files are parsed by OpenMesh's readers, but into a raw triangle soup rather than a
+// halfedge mesh: a halfedge mesh refuses non-manifold faces and would silently drop exactly
+// the defects that mesh validation must report. Nothing is welded, validated or repaired
+// here (see vertex_welding.hpp, mesh_validation.hpp, mesh_preparation.hpp).
+//
+// Units: coordinates are returned exactly as stored in the file. No file format records its
+// length unit, so every bemshape length (thickness, edge length, volume) is in the file's
+// units; CAD STL exports are usually millimetres.
+
+#include <Eigen/Core>
+#include <cstddef>
+#include <filesystem>
+#include <string>
+
+namespace bemshape::geometry {
+
+/// The triangles of a mesh file as stored, before welding.
+struct TriangleSoup {
+  /// #V×3 vertex positions [file units].
+  Eigen::MatrixX3d vertices;
+  /// #F×3 vertex indices, in the file's corner order.
+  Eigen::MatrixX3i faces;
+  /// "binary STL", "ASCII STL", "OBJ", "OFF" or "PLY".
+  std::string format;
+  /// Polygons with more than three corners that were split into triangle fans, and the
+  /// number of triangles this produced.
+  std::size_t polygons_triangulated = 0;
+  std::size_t triangles_from_polygons = 0;
+  /// Faces with fewer than three distinct corners that the reader dropped (OpenMesh's STL
+  /// reader drops facets whose corners coincide exactly; polygons with < 3 corners).
+  std::size_t collapsed_faces_dropped = 0;
+  /// Triangle corners stored in the file (3 per STL facet) and, for STL, how many distinct
+  /// positions OpenMesh's STL reader kept after merging exactly equal corners.
+  std::size_t corners_in_file = 0;
+};
+
+/// Reads `path` by its extension (.stl, .obj, .off, .ply; case-insensitive).
+///
+/// Before any parsing, a binary STL's triangle count is checked against the file size
+/// (84 + 50·n bytes), so a small file claiming billions of triangles is rejected without
+/// allocating; ASCII STL and OBJ vertex lines are checked for unparsable and non-finite
+/// numbers, which OpenMesh's readers would otherwise read as zeros.
+///
+/// Throws InputError (one line naming the file and what is wrong) if the path is missing, a
+/// directory, unreadable or empty, the extension is not supported, the file is truncated or
+/// malformed, a coordinate is NaN/Inf, a face refers to a missing vertex, or there are no
+/// triangles.
+TriangleSoup read_triangle_soup(const std::filesystem::path& path);
+
+/// Writes an indexed triangle mesh as binary STL (float32 coordinates, zero normals are
+/// recomputed from the corner order). Throws InputError if the file cannot be written.
+void write_binary_stl(const std::filesystem::path& path, const Eigen::MatrixX3d& vertices,
+                      const Eigen::MatrixX3i& faces);
+
+}  // namespace bemshape::geometry

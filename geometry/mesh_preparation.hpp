@@ -1,0 +1,99 @@
+#pragma once
+// The whole input pipeline for apps/: read → weld → validate → repair → report.
+//
+//   1. read the file into a triangle soup (mesh_io.hpp; polygons fan-triangulated);
+//   2. weld coincident vertices, exactly and within kWeldRelativeTolerance·diagonal;
+//   3. validate (mesh_validation.hpp) and repair what carries no geometry: collapsed,
+//      duplicate and zero-area faces (mesh_repair.hpp), then inconsistent orientation;
+//   4. refuse what cannot be repaired safely: holes, non-manifold edges and vertices,
+//      zero-area faces on a hole, non-orientable shells, self-intersections, shells that
+//      enclose no volume;
+//   5. orient every shell to bound the solid (outer skins outward, cavity walls inward).
+//
+// Nothing is guessed: every change is listed in MeshReport::repairs, every defect in
+// MeshReport::problems with its count and the position of its first occurrence.
+
+#include <Eigen/Core>
+#include <cstddef>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "core/progress.hpp"
+#include "geometry/mesh_io.hpp"
+#include "geometry/surface_mesh.hpp"
+#include "geometry/vertex_welding.hpp"
+
+namespace bemshape::geometry {
+
+/// One rule a mesh broke.
+struct MeshProblem {
+  enum class Status { repaired, refused, note };
+  Status status = Status::refused;
+  /// Short name with count, e.g. "12 open boundary edges".
+  std::string what;
+  std::size_t count = 0;
+  /// Position of the first offender [model units].
+  Eigen::Vector3d first = Eigen::Vector3d::Zero();
+  /// Why it matters and what the user can do, e.g. "the surface is not closed; close the
+  /// holes in the CAD export". For repaired problems: what was done.
+  std::string consequence;
+
+  /// "<what> (first at x, y, z): <consequence>".
+  std::string describe() const;
+};
+
+struct MeshReport {
+  std::string source;  // file name, or the name given for in-memory input
+  std::string format;
+  std::size_t triangles_read = 0;
+  std::size_t vertices_read = 0;
+  double weld_tolerance = 0.0;  // [model units]
+
+  // The prepared mesh (meaningful in full only if usable()).
+  std::size_t faces = 0;
+  std::size_t vertices = 0;
+  std::size_t shells = 0;
+  std::size_t cavities = 0;
+  double volume = 0.0;  // [model units³]
+  double area = 0.0;    // [model units²]
+  BoundingBox bounding_box;
+
+  std::vector<MeshProblem> problems;
+  /// Every change made to the input, in order, e.g. "merged 3 vertices closer than 2e-7".
+  std::vector<std::string> repairs;
+
+  bool usable() const;
+  /// The refusal as the InputError message: first line "<source>: <first refused
+  /// problem>", then one line per further refused problem. Empty if usable().
+  std::string refusal_message() const;
+};
+
+struct PreparedMesh {
+  SurfaceMesh mesh;
+  MeshReport report;
+};
+
+struct MeshPreparationOptions {
+  double weld_relative_tolerance = kWeldRelativeTolerance;
+};
+
+/// Runs the pipeline on a file and reports; does not throw for mesh defects (check
+/// report.usable()). Throws InputError if the file cannot be read at all.
+PreparedMesh inspect_mesh_file(const std::filesystem::path& path,
+                               const MeshPreparationOptions& options = {},
+                               const ProgressCallback& progress = {});
+
+/// The same for a triangle soup already in memory; `source` names it in messages.
+PreparedMesh inspect_triangle_soup(const TriangleSoup& soup, const std::string& source,
+                                   const MeshPreparationOptions& options = {},
+                                   const ProgressCallback& progress = {});
+
+/// What the solver stages call: inspect_mesh_file, then throw InputError with
+/// report.refusal_message() if the mesh is not usable. The returned mesh is closed,
+/// manifold, free of self-intersections and degenerate faces, and outward-oriented.
+PreparedMesh prepare_mesh_file(const std::filesystem::path& path,
+                               const MeshPreparationOptions& options = {},
+                               const ProgressCallback& progress = {});
+
+}  // namespace bemshape::geometry
