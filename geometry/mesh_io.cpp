@@ -223,12 +223,15 @@ bool parse_coordinate(std::string_view token, double& value, std::string& why) {
 /// Checks every `vertex x y z` line of an ASCII STL and that each facet has three of them.
 void lint_ascii_stl(const fs::path& path, std::string_view text) {
   std::size_t facets = 0, vertices = 0;
+  bool saw_end = false;
   for_each_line(text, [&](std::size_t line, const std::vector<std::string_view>& tokens) {
     if (tokens.empty())
       return;
     const std::string keyword = lowercase(std::string(tokens[0]));
     if (keyword == "facet")
       ++facets;
+    if (keyword == "endsolid")
+      saw_end = true;
     if (keyword != "vertex")
       return;
     ++vertices;
@@ -244,6 +247,8 @@ void lint_ascii_stl(const fs::path& path, std::string_view text) {
   });
   if (facets == 0)
     fail(path, "ASCII STL contains no facets");
+  if (!saw_end)
+    fail(path, "ASCII STL ends without 'endsolid': the file is truncated");
   if (vertices != 3 * facets)
     fail(path, "ASCII STL has " + std::to_string(facets) + " facets but " +
                    std::to_string(vertices) +
@@ -370,9 +375,9 @@ TriangleSoup read_triangle_soup(const fs::path& path) {
   if (!ok)
     fail(path, "cannot be parsed as " + soup.format + ": the file is malformed");
   if (importer.bad_index >= 0)
-    fail(path, "a face refers to vertex " + std::to_string(importer.bad_index) +
-                   " but the file has only " + std::to_string(importer.points.size()) +
-                   " vertices");
+    fail(path, "a face refers to vertex number " + std::to_string(importer.bad_index + 1) +
+                   " (counting from 1) but the file has only " +
+                   std::to_string(importer.points.size()) + " vertices");
 
   soup.vertices.resize(static_cast<Eigen::Index>(importer.points.size()), 3);
   for (std::size_t v = 0; v < importer.points.size(); ++v) {
