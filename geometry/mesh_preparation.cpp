@@ -139,8 +139,8 @@ PreparedMesh inspect_triangle_soup(const TriangleSoup& soup, const std::string& 
     add_problem(report, Status::note, before.needle_faces.count, before.needle_faces.first,
                 counted(before.needle_faces.count, "needle face", "needle faces") + " (height < " +
                     format_number(kNeedleRelativeHeight) + " of the longest edge)",
-                "valid geometry, but too thin for boundary elements; the solver remeshes the "
-                "surface first");
+                "valid geometry, but too thin for boundary elements; remesh the surface "
+                "(refine_to_edge_length) before a BEM solve");
   if (consistent.orientable && before.inconsistent_edges)
     add_problem(
         report, Status::repaired, before.inconsistent_edges.count, before.inconsistent_edges.first,
