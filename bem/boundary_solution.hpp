@@ -1,0 +1,34 @@
+#pragma once
+// The boundary data of the shape-feature solution, for the three coordinate directions.
+//
+//   phi(f, i) = s_i on face f (P0: the value at the face centroid) [model units]
+//   q(f, i)   = ∂_n s_i on face f from INSIDE the solid [dimensionless]
+//
+// The exterior normal derivative follows from the jump: q_out = q − n_i/ã.
+
+#include <string>
+
+#include <Eigen/Core>
+
+#include "bem/transmission_parameters.hpp"
+
+namespace bemshape::bem {
+
+/// What a solver reports about its run (copied into the JSON report by apps/).
+struct SolveReport {
+  std::string method;             ///< "dense-lu", …
+  Eigen::Index unknowns = 0;      ///< size of the linear system
+  int iterations = 0;             ///< Krylov iterations (0 for a direct solve)
+  double residual = 0.0;          ///< max over right-hand sides of ‖A x − b‖ / ‖b‖
+  double assembly_seconds = 0.0;  ///< wall time of the operator assembly
+  double solve_seconds = 0.0;     ///< wall time of the factorisation and solves
+};
+
+struct BoundarySolution {
+  Eigen::MatrixX3d phi;  ///< #F×3, s_i on each face
+  Eigen::MatrixX3d q;    ///< #F×3, interior normal derivative of s_i on each face
+  TransmissionParameters parameters;
+  SolveReport report;
+};
+
+}  // namespace bemshape::bem
