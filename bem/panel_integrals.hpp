@@ -36,7 +36,7 @@ struct FarFieldRule {
 };
 
 /// The table, cheapest rule first. Built once.
-const std::array<FarFieldRule, 8>& far_field_rules();
+const std::array<FarFieldRule, 7>& far_field_rules();
 
 /// The Gauss rule for distance ratio η = ratio and κ·diameter (0 for Laplace), or nullptr when
 /// the polar scheme is needed.

@@ -154,9 +154,22 @@ PanelIntegrals polar_panel_integrals(const Kernel& kernel, const Panel& panel,
 
   double sl = 0.0, dl = 0.0, g_dl_normal = 0.0;
   Vec2 g_sl = Vec2::Zero(), g_dl = Vec2::Zero();
+  // ∫ e(θ) dθ over the angles the edges actually sweep. It vanishes for a closed loop, which
+  // lets the in-plane gradients drop θ-independent radial constants; when x' lies on an edge
+  // or at a corner that edge is skipped, the loop is open and the constants are added back.
+  bool edge_skipped = false;
+  Vec2 swept_direction = Vec2::Zero();
 
   for (const EdgeFrame& E : edges) {
-    if (E.p <= tol) continue;
+    if (E.p <= tol) {
+      edge_skipped = true;
+      continue;
+    }
+    {
+      // ∫_{θ1}^{θ2} (cos θ, sin θ) dθ = −J(ê2 − ê1), J the rotation by +90°.
+      const Vec2 de = (E.foot + E.t2 * E.u).normalized() - (E.foot + E.t1 * E.u).normalized();
+      swept_direction += Vec2(de.y(), -de.x());
+    }
     const double p = E.p;
     auto visit = [&](double v, double w) {
       const double ch = std::cosh(v);
@@ -225,6 +238,18 @@ PanelIntegrals polar_panel_integrals(const Kernel& kernel, const Panel& panel,
       dl += d_over_c * exp_c * theta;
     }
     g_dl_normal -= kappa * std::exp(-kappa * abs_d) * theta;
+  }
+  if (with_gradients && edge_skipped && d != 0.0) {
+    // The dropped constants: −log|d| (Laplace SL), 1/d (Laplace DL), the full radial
+    // integrals I∞ = T(R = 0) (Yukawa SL and DL).
+    if constexpr (!yukawa) {
+      g_sl -= std::log(abs_d) * swept_direction;
+      g_dl += swept_direction / d;
+    } else {
+      const auto [i_sl, i_dl] = yukawa_tails(kappa, abs_d, 0.0, abs_d);
+      g_sl += i_sl * swept_direction;
+      g_dl += (std::copysign(1.0, d) / abs_d) * i_dl * swept_direction;
+    }
   }
 
   constexpr double inv_four_pi = 0.25 * std::numbers::inv_pi;

@@ -1,0 +1,71 @@
+#include "panel_reference.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "adaptive_triangle_reference.hpp"
+
+namespace bemshape::testing {
+namespace {
+
+constexpr double inv_four_pi = 0.25 / std::numbers::pi;
+
+/// G(r), G'(r), G''(r) of e^{−κr}/(4πr).
+struct Radial {
+  double g, g1, g2;
+};
+Radial radial(double kappa, double r) {
+  const double e = std::exp(-kappa * r) * inv_four_pi;
+  return {e / r, -e * (1 + kappa * r) / (r * r),
+          e * (kappa * kappa * r * r + 2 * kappa * r + 2) / (r * r * r)};
+}
+
+}  // namespace
+
+NearFieldMagnitudes near_field_magnitudes(const bem::Panel& panel, double kappa) {
+  const double h = kappa > 0 ? std::min(panel.diameter, 1.0 / kappa) : panel.diameter;
+  const double m = panel.area * inv_four_pi;
+  return {m / h, m / (h * h), m / (h * h), m / (h * h * h)};
+}
+
+ReferenceIntegrals reference_panel_integrals(double kappa, const bem::Panel& panel,
+                                             const Eigen::Vector3d& x, bool with_gradients,
+                                             double rel_tol) {
+  const NearFieldMagnitudes m = near_field_magnitudes(panel, kappa);
+  const double floor_factor = rel_tol * 1e-4;
+  const Eigen::Vector3d& n = panel.normal;
+  const auto& [a, b, c] = panel.corners;
+  auto integrate = [&](auto&& f, double magnitude) {
+    return adaptive_triangle_integral(f, a, b, c, rel_tol, floor_factor * magnitude).value;
+  };
+  ReferenceIntegrals out;
+  out.single_layer = integrate(
+      [&](const Eigen::Vector3d& y) { return radial(kappa, (x - y).norm()).g; }, m.single_layer);
+  out.double_layer = integrate(
+      [&](const Eigen::Vector3d& y) {
+        const double r = (x - y).norm();
+        return radial(kappa, r).g1 * (y - x).dot(n) / r;
+      },
+      m.double_layer);
+  if (!with_gradients) return out;
+  for (int i = 0; i < 3; ++i) {
+    out.single_layer_gradient[i] = integrate(
+        [&](const Eigen::Vector3d& y) {
+          const double r = (x - y).norm();
+          return radial(kappa, r).g1 * (x - y)[i] / r;
+        },
+        m.single_layer_gradient);
+    // ∇_x [G'(r)(y − x)·n / r] = −n G'/r + ((y − x)·n) (G''/r − G'/r²)(x − y)/r.
+    out.double_layer_gradient[i] = integrate(
+        [&](const Eigen::Vector3d& y) {
+          const double r = (x - y).norm();
+          const Radial k = radial(kappa, r);
+          return -n[i] * k.g1 / r + (y - x).dot(n) * (k.g2 / r - k.g1 / (r * r)) * (x - y)[i] / r;
+        },
+        m.double_layer_gradient);
+  }
+  return out;
+}
+
+}  // namespace bemshape::testing
