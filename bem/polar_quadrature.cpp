@@ -28,6 +28,10 @@ constexpr double piece_growth = 2.0;
 /// triangle (x', edge) of zero area up to rounding: it contributes nothing and is skipped
 /// (its parametrisation t = p sinh v would divide by p ≈ 0).
 constexpr double on_line_tolerance = 1e-12;
+/// Targets closer than this fraction of the diameter to the panel's plane are in the plane
+/// (d = 0): rounding in d of a point computed on the panel is ~1e−16·diameter, and the double
+/// layer jumps by 1 across the plane, so this decides which side, or the principal value.
+constexpr double in_plane_tolerance = 1e-12;
 /// Yukawa only: when κ(ρ'_max − c) exceeds this, e^{−κρ'} varies by more than e across the
 /// panel and the constant part of each radial closed form is integrated exactly over θ
 /// (Θ e^{−κc}) instead of inside the quadrature; below it the combined form with expm1 avoids
@@ -102,7 +106,10 @@ PanelIntegrals polar_panel_integrals(const Kernel& kernel, const Panel& panel,
                                      const Eigen::Vector3d& x, bool with_gradients) {
   constexpr bool yukawa = Kernel::has_exponential_decay;
   const double kappa = kernel.kappa();
-  const double d = (x - panel.corners[0]).dot(panel.normal);
+  double d = (x - panel.corners[0]).dot(panel.normal);
+  // A collocation point on the panel (a centroid, say) has d at rounding level, of either sign;
+  // the double layer would then jump to ±½ instead of its principal value 0.
+  if (std::abs(d) <= in_plane_tolerance * panel.diameter) d = 0.0;
   const double abs_d = std::abs(d);
 
   std::array<Vec2, 3> P;

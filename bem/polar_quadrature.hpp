@@ -24,7 +24,8 @@
 // Laplace in-plane parts are closed forms; the Yukawa in-plane parts use the radial tails
 // ∫_R^∞ in the variable ρ = |d| sinh u, Gauss–Legendre in u.
 //
-// Targets in the plane (d = 0): values are exact limits (the double layer is 0, the principal
+// Targets in the plane (|d| ≤ 1e−12·diameter, treated as d = 0, so that collocation points
+// computed on the panel get the principal value whatever the rounding): values are exact limits (the double layer is 0, the principal
 // value on the panel). Gradients for d = 0 and x' inside T are the average of the two one-sided
 // limits: the single-layer normal derivative is 0 there; the in-plane parts are the common
 // limit. Targets on an edge line with d = 0 are singular and not supported (the result is finite
