@@ -21,8 +21,10 @@ using namespace bemshape;
 
 int main(int argc, char** argv) {
   std::vector<long long> sizes;
-  for (int i = 1; i < argc; ++i) sizes.push_back(std::atoll(argv[i]));
-  if (sizes.empty()) sizes = {32, 64, 128, 256};
+  for (int i = 1; i < argc; ++i)
+    sizes.push_back(std::atoll(argv[i]));
+  if (sizes.empty())
+    sizes = {32, 64, 128, 256};
   features::FeatureParameters p;
   p.h0 = 0.3;
   p.a = 0.2;
@@ -36,8 +38,8 @@ int main(int argc, char** argv) {
     const auto start = std::chrono::steady_clock::now();
     fem::fill_characteristic_function<3>(grid, [](const Eigen::Vector3d& x) {
       const double r = x.norm();
-      return (r > 0.3 && r < 0.6) || (std::abs(x.z() + 0.75) < 0.1 && std::abs(x.x()) < 0.6 &&
-                                      std::abs(x.y()) < 0.6);
+      return (r > 0.3 && r < 0.6) ||
+             (std::abs(x.z() + 0.75) < 0.1 && std::abs(x.x()) < 0.6 && std::abs(x.y()) < 0.6);
     });
     const auto solution = fem::solve_shape_feature_pde<3>(grid, p);
     const auto before_features = std::chrono::steady_clock::now();
@@ -51,7 +53,8 @@ int main(int argc, char** argv) {
                 solution.report.solve_seconds, feature_s, total_s,
                 static_cast<double>(peak_resident_bytes()) / (1024.0 * 1024.0));
     std::fflush(stdout);
-    if (f.field.f_h.size() != grid.num_cells()) return 1;
+    if (f.field.f_h.size() != grid.num_cells())
+      return 1;
   }
   return 0;
 }

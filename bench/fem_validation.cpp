@@ -26,14 +26,17 @@ constexpr double kBarThickness[] = {0.2, 0.25, 0.3, 0.35, 0.4, 0.45, 0.55, 0.6};
 
 void write_bars(const std::string& folder) {
   const double pixel = 0.005;
-  const auto pixels = [pixel](double length) { return static_cast<long long>(std::lround(length / pixel)); };
+  const auto pixels = [pixel](double length) {
+    return static_cast<long long>(std::lround(length / pixel));
+  };
   fem::BinaryImage<2> image;
   image.size = {pixels(8.0), pixels(5.0)};
   image.solid.assign(static_cast<std::size_t>(image.num_pixels()), 0);
   for (int i = 0; i < 8; ++i) {
     const long long x0 = pixels(i + 0.25), x1 = x0 + pixels(kBarThickness[i]);
     for (long long y = pixels(0.5); y < pixels(4.5); ++y)
-      for (long long x = x0; x < x1; ++x) image.solid[static_cast<std::size_t>(y * image.size[0] + x)] = 1;
+      for (long long x = x0; x < x1; ++x)
+        image.solid[static_cast<std::size_t>(y * image.size[0] + x)] = 1;
   }
   fem::write_binary_png(folder + "/multiple_bars.png", image);
   std::printf("wrote %s/multiple_bars.png (%lld x %lld pixels, pixel 0.005)\n", folder.c_str(),
@@ -45,12 +48,15 @@ void one_dimensional() {
   p.h0 = 0.2;
   p.a = 0.2;
   const auto exact = ref::interval_1d_solution({0.2, 0.2}, 0.0, 1.0, 0.4, 0.2);
-  std::printf("| cell | kappa*cell | max |s_h - s| / max |s| | h_f at bar centre (exact 0.2) | CG it |\n|---|---|---|---|---|\n");
+  std::printf(
+      "| cell | kappa*cell | max |s_h - s| / max |s| | h_f at bar centre (exact 0.2) | CG it "
+      "|\n|---|---|---|---|---|\n");
   for (long long n : {40, 80, 160, 320, 640}) {
     fem::VoxelGrid<2> grid;
     grid.cells = {n, n};
     grid.cell_size = 1.0 / static_cast<double>(n);
-    fem::fill_characteristic_function<2>(grid, [](const Eigen::Vector2d& x) { return x.x() > 0.4 && x.x() < 0.6; });
+    fem::fill_characteristic_function<2>(
+        grid, [](const Eigen::Vector2d& x) { return x.x() > 0.4 && x.x() < 0.6; });
     const auto solution = fem::solve_shape_feature_pde<2>(grid, p);
     double error = 0.0, size = 0.0;
     for (long long i = 0; i <= n; ++i) {
@@ -59,8 +65,9 @@ void one_dimensional() {
       size = std::max(size, std::abs(exact.s(x)));
     }
     const auto f = fem::voxel_features<2>(grid, solution.s, p);
-    std::printf("| 1/%lld | %.3f | %.2e | %.5f | %d |\n", n, p.kappa() / static_cast<double>(n), error / size,
-                f.field.h_f[grid.cell_index({n / 2, n / 2})], solution.report.iterations);
+    std::printf("| 1/%lld | %.3f | %.2e | %.5f | %d |\n", n, p.kappa() / static_cast<double>(n),
+                error / size, f.field.h_f[grid.cell_index({n / 2, n / 2})],
+                solution.report.iterations);
   }
 }
 
@@ -84,19 +91,24 @@ void solid(const std::string& kind, std::vector<double> cells) {
     hi = -lo;
     inside = [](const Eigen::Vector3d& x) { return x.norm() > 0.7 && x.norm() < 1.0; };
     expected = ref::inverse_thickness(rp, 3.0 * ref::shell_solution(rp, 0.7, 1.0).A);
-    for (Eigen::Vector3d d : {Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(0, -1, 0), Eigen::Vector3d(1, 1, 1),
-                              Eigen::Vector3d(-1, 2, 0.5)})
+    for (Eigen::Vector3d d : {Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(0, -1, 0),
+                              Eigen::Vector3d(1, 1, 1), Eigen::Vector3d(-1, 2, 0.5)})
       probes.push_back(0.85 * d.normalized());
   } else {
     lo = Eigen::Vector3d(-0.7, -0.7, -0.15);
     hi = -lo;
-    inside = [lo, hi](const Eigen::Vector3d& x) { return (x.array() > lo.array()).all() && (x.array() < hi.array()).all(); };
+    inside = [lo, hi](const Eigen::Vector3d& x) {
+      return (x.array() > lo.array()).all() && (x.array() < hi.array()).all();
+    };
     expected = ref::inverse_thickness(rp, ref::plate_slope(rp, 0.3));
     probes = {{0.0, 0.0, 0.01}, {0.2, -0.1, 0.1}, {-0.15, 0.2, -0.1}};
   }
-  if (cells.empty()) cells = {0.04, 0.03, 0.02, 0.015};
-  std::printf("%s: exact f_h = %.6f\n| cell | kappa*cell | grid | max rel. error of f_h at %zu probes | CG it |\n|---|---|---|---|---|\n",
-              kind.c_str(), expected, probes.size());
+  if (cells.empty())
+    cells = {0.04, 0.03, 0.02, 0.015};
+  std::printf(
+      "%s: exact f_h = %.6f\n| cell | kappa*cell | grid | max rel. error of f_h at %zu probes | CG "
+      "it |\n|---|---|---|---|---|\n",
+      kind.c_str(), expected, probes.size());
   for (double cell : cells) {
     auto grid = fem::grid_around<3>(lo, hi, cell, p, 20'000'000);
     fem::fill_characteristic_function<3>(grid, inside);
@@ -105,7 +117,8 @@ void solid(const std::string& kind, std::vector<double> cells) {
     double worst = 0.0;
     for (const auto& x : probes) {
       std::array<fem::GridIndex, 3> c{};
-      for (int d = 0; d < 3; ++d) c[d] = static_cast<fem::GridIndex>(std::floor((x(d) - grid.origin(d)) / cell));
+      for (int d = 0; d < 3; ++d)
+        c[d] = static_cast<fem::GridIndex>(std::floor((x(d) - grid.origin(d)) / cell));
       worst = std::max(worst, std::abs(f.field.f_h[grid.cell_index(c)] / expected - 1.0));
     }
     std::printf("| %.3f | %.2f | %lld x %lld x %lld | %.2f%% | %d |\n", cell, p.kappa() * cell,
@@ -129,7 +142,8 @@ int main(int argc, char** argv) {
     one_dimensional();
   } else {
     std::vector<double> cells;
-    for (int i = 2; i < argc; ++i) cells.push_back(std::atof(argv[i]));
+    for (int i = 2; i < argc; ++i)
+      cells.push_back(std::atof(argv[i]));
     solid(what, cells);
   }
   return 0;

@@ -61,7 +61,8 @@ BinaryImage<2> read_png_image(const std::filesystem::path& path, bool invert) {
   for (GridIndex row = 0; row < pixels.height; ++row) {
     const GridIndex y = pixels.height - 1 - row;
     for (GridIndex x = 0; x < pixels.width; ++x) {
-      const bool dark = pixels.grey[static_cast<std::size_t>(row * pixels.width + x)] < kGreyThreshold;
+      const bool dark =
+          pixels.grey[static_cast<std::size_t>(row * pixels.width + x)] < kGreyThreshold;
       image.solid[static_cast<std::size_t>(y * pixels.width + x)] = dark != invert;
     }
   }
@@ -74,8 +75,10 @@ BinaryImage<3> read_png_stack(const std::filesystem::path& folder, bool invert) 
   std::vector<std::filesystem::path> slices;
   for (const auto& entry : std::filesystem::directory_iterator(folder)) {
     auto ext = entry.path().extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-    if (entry.is_regular_file() && ext == ".png") slices.push_back(entry.path());
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return std::tolower(c); });
+    if (entry.is_regular_file() && ext == ".png")
+      slices.push_back(entry.path());
   }
   if (slices.empty())
     throw InputError(folder.string() + ": contains no .png slices");
@@ -108,8 +111,8 @@ BinaryImage<3> read_raw_volume(const std::filesystem::path& path,
   for (GridIndex n : dims)
     if (n < 1)
       throw InputError(name + ": volume dimensions must be positive (--dims NX,NY,NZ)");
-  const double total = static_cast<double>(dims[0]) * static_cast<double>(dims[1]) *
-                       static_cast<double>(dims[2]);
+  const double total =
+      static_cast<double>(dims[0]) * static_cast<double>(dims[1]) * static_cast<double>(dims[2]);
   if (total > static_cast<double>(kMaxImagePixels))
     throw ResourceError(name + ": dimensions " + std::to_string(dims[0]) + "," +
                         std::to_string(dims[1]) + "," + std::to_string(dims[2]) +
@@ -127,9 +130,11 @@ BinaryImage<3> read_raw_volume(const std::filesystem::path& path,
   volume.size = dims;
   volume.solid.resize(static_cast<std::size_t>(expected));
   std::ifstream in(path, std::ios::binary);
-  if (!in.read(reinterpret_cast<char*>(volume.solid.data()), static_cast<std::streamsize>(expected)))
+  if (!in.read(reinterpret_cast<char*>(volume.solid.data()),
+               static_cast<std::streamsize>(expected)))
     throw InputError(name + ": could not read " + std::to_string(expected) + " bytes");
-  for (auto& v : volume.solid) v = (v != 0) != invert;
+  for (auto& v : volume.solid)
+    v = (v != 0) != invert;
   return volume;
 }
 

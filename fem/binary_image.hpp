@@ -28,12 +28,14 @@ struct BinaryImage {
 
   GridIndex num_pixels() const {
     GridIndex n = 1;
-    for (int d = 0; d < D; ++d) n *= size[d];
+    for (int d = 0; d < D; ++d)
+      n *= size[d];
     return n;
   }
   bool at(const std::array<GridIndex, D>& p) const {
     GridIndex index = 0;
-    for (int d = D - 1; d >= 0; --d) index = index * size[d] + p[d];
+    for (int d = D - 1; d >= 0; --d)
+      index = index * size[d] + p[d];
     return solid[static_cast<std::size_t>(index)] != 0;
   }
 };

@@ -17,7 +17,8 @@ void fill_characteristic_function(VoxelGrid<D>& grid, const InsideTest<D>& insid
   const GridIndex n = grid.num_cells();
   grid.chi.assign(static_cast<std::size_t>(n), 0.0f);
   int samples = 1;
-  for (int d = 0; d < D; ++d) samples *= samples_per_axis;
+  for (int d = 0; d < D; ++d)
+    samples *= samples_per_axis;
   const double step = grid.cell_size / samples_per_axis;
 #pragma omp parallel for schedule(dynamic, 1024)
   for (GridIndex e = 0; e < n; ++e) {
@@ -39,13 +40,14 @@ void fill_characteristic_function(VoxelGrid<D>& grid, const InsideTest<D>& insid
 
 template <int D>
 VoxelGrid<D> grid_for_image(const BinaryImage<D>& image, double pixel_size, double cell_size,
-                            const features::FeatureParameters& parameters,
-                            int samples_per_axis, GridIndex max_cells) {
+                            const features::FeatureParameters& parameters, int samples_per_axis,
+                            GridIndex max_cells) {
   if (!(pixel_size > 0.0) || !std::isfinite(pixel_size))
     throw InputError("image: the pixel size must be a positive length (got " +
                      std::to_string(pixel_size) + ")");
   Eigen::Matrix<double, D, 1> lo = Eigen::Matrix<double, D, 1>::Zero(), hi;
-  for (int d = 0; d < D; ++d) hi(d) = static_cast<double>(image.size[d]) * pixel_size;
+  for (int d = 0; d < D; ++d)
+    hi(d) = static_cast<double>(image.size[d]) * pixel_size;
   VoxelGrid<D> grid = grid_around<D>(lo, hi, cell_size, parameters, max_cells, true);
   const auto size = image.size;
   fill_characteristic_function<D>(
@@ -54,7 +56,8 @@ VoxelGrid<D> grid_for_image(const BinaryImage<D>& image, double pixel_size, doub
         std::array<GridIndex, D> p{};
         for (int d = 0; d < D; ++d) {
           const double u = std::floor(x(d) / pixel_size);
-          if (u < 0.0 || u >= static_cast<double>(size[d])) return false;
+          if (u < 0.0 || u >= static_cast<double>(size[d]))
+            return false;
           p[d] = static_cast<GridIndex>(u);
         }
         return image.at(p);
@@ -66,7 +69,8 @@ VoxelGrid<D> grid_for_image(const BinaryImage<D>& image, double pixel_size, doub
 VoxelGrid<3> grid_for_mesh(const geometry::SurfaceMesh& mesh, double cell_size,
                            const features::FeatureParameters& parameters, int samples_per_axis,
                            GridIndex max_cells) {
-  if (mesh.empty()) throw InputError("voxel grid: the surface mesh has no faces");
+  if (mesh.empty())
+    throw InputError("voxel grid: the surface mesh has no faces");
   const geometry::BoundingBox box = mesh.bounding_box();
   VoxelGrid<3> grid = grid_around<3>(box.min, box.max, cell_size, parameters, max_cells);
   const geometry::PointInsideQuery query(mesh);

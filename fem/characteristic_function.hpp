@@ -35,8 +35,8 @@ void fill_characteristic_function(VoxelGrid<D>& grid, const InsideTest<D>& insid
 /// each sample point (outside the image: void). Cells need not match pixels.
 template <int D>
 VoxelGrid<D> grid_for_image(const BinaryImage<D>& image, double pixel_size, double cell_size,
-                            const features::FeatureParameters& parameters,
-                            int samples_per_axis = 1, GridIndex max_cells = kDefaultMaxCells<D>);
+                            const features::FeatureParameters& parameters, int samples_per_axis = 1,
+                            GridIndex max_cells = kDefaultMaxCells<D>);
 
 /// A grid around a closed, outward-oriented surface mesh (3-D), χ from the exact inside
 /// test of geometry/point_inside.hpp (points on the surface count as outside). Throws

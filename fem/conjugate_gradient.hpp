@@ -37,7 +37,8 @@ ConjugateGradientReport conjugate_gradient(const Operator& A, const Precondition
                                            const ProgressCallback& progress = {},
                                            bool throw_on_failure = true) {
   const Eigen::Index m = B.cols();
-  if (X.rows() != B.rows() || X.cols() != m) X.setZero(B.rows(), m);
+  if (X.rows() != B.rows() || X.cols() != m)
+    X.setZero(B.rows(), m);
   Eigen::MatrixXd R, Z, P, Q;
   A.apply(X, Q);
   R = B - Q;
@@ -45,7 +46,8 @@ ConjugateGradientReport conjugate_gradient(const Operator& A, const Precondition
   std::vector<char> active(m, 1);
   Eigen::VectorXd r_norm = R.colwise().norm().transpose();
   auto is_done = [&](Eigen::Index j) { return !(r_norm[j] > tolerance * b_norm[j]); };
-  for (Eigen::Index j = 0; j < m; ++j) active[j] = !is_done(j);
+  for (Eigen::Index j = 0; j < m; ++j)
+    active[j] = !is_done(j);
 
   ConjugateGradientReport report;
   M.apply(R, Z);
@@ -53,16 +55,20 @@ ConjugateGradientReport conjugate_gradient(const Operator& A, const Precondition
   Eigen::VectorXd rz = (R.array() * Z.array()).colwise().sum().transpose();
   double start_ratio = 0.0;
   for (Eigen::Index j = 0; j < m; ++j)
-    if (b_norm[j] > 0.0) start_ratio = std::max(start_ratio, r_norm[j] / b_norm[j]);
+    if (b_norm[j] > 0.0)
+      start_ratio = std::max(start_ratio, r_norm[j] / b_norm[j]);
 
   for (int k = 0; k < max_iterations; ++k) {
     bool any = false;
-    for (Eigen::Index j = 0; j < m; ++j) any = any || active[j];
-    if (!any) break;
+    for (Eigen::Index j = 0; j < m; ++j)
+      any = any || active[j];
+    if (!any)
+      break;
     A.apply(P, Q);
     const Eigen::VectorXd pq = (P.array() * Q.array()).colwise().sum().transpose();
     for (Eigen::Index j = 0; j < m; ++j) {
-      if (!active[j]) continue;
+      if (!active[j])
+        continue;
       const double alpha = rz[j] / pq[j];
       if (!std::isfinite(alpha))
         throw NumericalError("conjugate gradients: step length is not finite at iteration " +
@@ -74,13 +80,17 @@ ConjugateGradientReport conjugate_gradient(const Operator& A, const Precondition
     }
     r_norm = R.colwise().norm().transpose();
     if (!r_norm.allFinite())
-      throw NumericalError("conjugate gradients: the residual became NaN or infinite at "
-                           "iteration " + std::to_string(k + 1) + "; check the input data");
+      throw NumericalError(
+          "conjugate gradients: the residual became NaN or infinite at "
+          "iteration " +
+          std::to_string(k + 1) + "; check the input data");
     report.iterations = k + 1;
     double worst = 0.0;
     for (Eigen::Index j = 0; j < m; ++j) {
-      if (active[j] && is_done(j)) active[j] = 0;
-      if (active[j]) worst = std::max(worst, r_norm[j] / b_norm[j]);
+      if (active[j] && is_done(j))
+        active[j] = 0;
+      if (active[j])
+        worst = std::max(worst, r_norm[j] / b_norm[j]);
     }
     if (progress && start_ratio > 0.0 && worst > 0.0) {
       const double done = std::log(start_ratio / worst) / std::log(start_ratio / tolerance);
@@ -89,7 +99,8 @@ ConjugateGradientReport conjugate_gradient(const Operator& A, const Precondition
     M.apply(R, Z);
     const Eigen::VectorXd rz_next = (R.array() * Z.array()).colwise().sum().transpose();
     for (Eigen::Index j = 0; j < m; ++j) {
-      if (!active[j]) continue;
+      if (!active[j])
+        continue;
       const double beta = rz_next[j] / rz[j];
       P.col(j) = Z.col(j) + beta * P.col(j);
     }

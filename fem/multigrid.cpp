@@ -31,21 +31,24 @@ std::array<GridIndex, D> multi_index(GridIndex index, const std::array<GridIndex
 template <int D>
 GridIndex node_number(const std::array<GridIndex, D>& p, const std::array<GridIndex, D>& cells) {
   GridIndex index = 0;
-  for (int d = D - 1; d >= 0; --d) index = index * (cells[d] + 1) + p[d];
+  for (int d = D - 1; d >= 0; --d)
+    index = index * (cells[d] + 1) + p[d];
   return index;
 }
 
 template <int D>
 std::array<GridIndex, D> interior_extent(const std::array<GridIndex, D>& cells) {
   std::array<GridIndex, D> e{};
-  for (int d = 0; d < D; ++d) e[d] = cells[d] - 1;
+  for (int d = 0; d < D; ++d)
+    e[d] = cells[d] - 1;
   return e;
 }
 
 template <int D>
 GridIndex count(const std::array<GridIndex, D>& extent) {
   GridIndex n = 1;
-  for (int d = 0; d < D; ++d) n *= extent[d];
+  for (int d = 0; d < D; ++d)
+    n *= extent[d];
   return n;
 }
 
@@ -55,14 +58,16 @@ template <int D>
 void prolongate_add(const std::array<GridIndex, D>& fine_cells, const Eigen::MatrixXd& coarse,
                     Eigen::MatrixXd& fine) {
   std::array<GridIndex, D> coarse_cells{};
-  for (int d = 0; d < D; ++d) coarse_cells[d] = fine_cells[d] / 2;
+  for (int d = 0; d < D; ++d)
+    coarse_cells[d] = fine_cells[d] / 2;
   const auto extent = interior_extent<D>(fine_cells);
   const GridIndex n = count<D>(extent);
   const Eigen::Index m = fine.cols();
 #pragma omp parallel for schedule(static)
   for (GridIndex i = 0; i < n; ++i) {
     auto p = multi_index<D>(i, extent);
-    for (int d = 0; d < D; ++d) ++p[d];
+    for (int d = 0; d < D; ++d)
+      ++p[d];
     const GridIndex target = node_number<D>(p, fine_cells);
     // Per axis: an even fine index coincides with a coarse node, an odd one lies halfway.
     for (int bits = 0; bits < (1 << D); ++bits) {
@@ -82,9 +87,11 @@ void prolongate_add(const std::array<GridIndex, D>& fine_cells, const Eigen::Mat
           weight *= 0.5;
         }
       }
-      if (!used) continue;
+      if (!used)
+        continue;
       const GridIndex source = node_number<D>(c, coarse_cells);
-      for (Eigen::Index j = 0; j < m; ++j) fine(target, j) += weight * coarse(source, j);
+      for (Eigen::Index j = 0; j < m; ++j)
+        fine(target, j) += weight * coarse(source, j);
     }
   }
 }
@@ -106,7 +113,8 @@ void restrict_transpose(const std::array<GridIndex, D>& fine_cells, const Eigen:
 #pragma omp parallel for schedule(static)
   for (GridIndex i = 0; i < n; ++i) {
     auto c = multi_index<D>(i, extent);
-    for (int d = 0; d < D; ++d) ++c[d];
+    for (int d = 0; d < D; ++d)
+      ++c[d];
     const GridIndex target = node_number<D>(c, coarse_cells);
     for (int s = 0; s < kStencil; ++s) {
       std::array<GridIndex, D> p{};
@@ -116,10 +124,12 @@ void restrict_transpose(const std::array<GridIndex, D>& fine_cells, const Eigen:
         const int o = rest % 3 - 1;
         rest /= 3;
         p[d] = 2 * c[d] + o;
-        if (o != 0) weight *= 0.5;
+        if (o != 0)
+          weight *= 0.5;
       }
       const GridIndex source = node_number<D>(p, fine_cells);
-      for (Eigen::Index j = 0; j < m; ++j) coarse(target, j) += weight * fine(source, j);
+      for (Eigen::Index j = 0; j < m; ++j)
+        coarse(target, j) += weight * fine(source, j);
     }
   }
 }
@@ -141,7 +151,8 @@ Multigrid<D>::Multigrid(ShapeFeatureOperator<D> fine, const MultigridOptions& op
     level.inverse_diagonal.resize(op.num_nodes());
     for (GridIndex i = 0; i < op.num_nodes(); ++i)
       level.inverse_diagonal[i] = op.is_boundary_node(i) ? 0.0 : 1.0 / diag[i];
-    if (&level == &levels_.back()) break;
+    if (&level == &levels_.back())
+      break;
     // Power iteration on diag(A)⁻¹A from a deterministic, non-smooth start vector.
     Eigen::MatrixXd v(op.num_nodes(), 1), w;
     for (GridIndex i = 0; i < op.num_nodes(); ++i)
@@ -159,13 +170,16 @@ Multigrid<D>::Multigrid(ShapeFeatureOperator<D> fine, const MultigridOptions& op
   // Dense Cholesky of the coarsest level on its interior nodes.
   const auto& coarsest = levels_.back().op;
   for (GridIndex i = 0; i < coarsest.num_nodes(); ++i)
-    if (!coarsest.is_boundary_node(i)) coarse_unknowns_.push_back(i);
+    if (!coarsest.is_boundary_node(i))
+      coarse_unknowns_.push_back(i);
   const auto n = static_cast<Eigen::Index>(coarse_unknowns_.size());
   Eigen::MatrixXd unit = Eigen::MatrixXd::Zero(coarsest.num_nodes(), n), image;
-  for (Eigen::Index j = 0; j < n; ++j) unit(coarse_unknowns_[j], j) = 1.0;
+  for (Eigen::Index j = 0; j < n; ++j)
+    unit(coarse_unknowns_[j], j) = 1.0;
   coarsest.apply(unit, image);
   Eigen::MatrixXd dense(n, n);
-  for (Eigen::Index i = 0; i < n; ++i) dense.row(i) = image.row(coarse_unknowns_[i]);
+  for (Eigen::Index i = 0; i < n; ++i)
+    dense.row(i) = image.row(coarse_unknowns_[i]);
   coarse_factor_.compute(dense);
   if (coarse_factor_.info() != Eigen::Success)
     throw NumericalError("multigrid: the coarsest shape-feature operator (" + std::to_string(n) +
@@ -191,10 +205,12 @@ void Multigrid<D>::smooth(const Level& level, bool zero_initial_guess, bool want
   const int degree = options_.smoothing_degree;
   for (int k = 1; k <= degree; ++k) {
     level.x += level.d;
-    if (k == degree && !want_residual) break;
+    if (k == degree && !want_residual)
+      break;
     level.op.apply(level.d, level.t);
     level.r -= level.t;
-    if (k == degree) break;
+    if (k == degree)
+      break;
     const double rho_next = 1.0 / (2.0 * sigma - rho);
     level.d = rho_next * rho * level.d +
               (2.0 * rho_next / delta) * (level.r.array().colwise() * inv).matrix();
@@ -207,9 +223,11 @@ void Multigrid<D>::solve_coarsest(const Level& level) const {
   const auto n = static_cast<Eigen::Index>(coarse_unknowns_.size());
   level.x.setZero(level.b.rows(), level.b.cols());
   Eigen::MatrixXd rhs(n, level.b.cols());
-  for (Eigen::Index i = 0; i < n; ++i) rhs.row(i) = level.b.row(coarse_unknowns_[i]);
+  for (Eigen::Index i = 0; i < n; ++i)
+    rhs.row(i) = level.b.row(coarse_unknowns_[i]);
   const Eigen::MatrixXd solution = coarse_factor_.solve(rhs);
-  for (Eigen::Index i = 0; i < n; ++i) level.x.row(coarse_unknowns_[i]) = solution.row(i);
+  for (Eigen::Index i = 0; i < n; ++i)
+    level.x.row(coarse_unknowns_[i]) = solution.row(i);
 }
 
 template <int D>

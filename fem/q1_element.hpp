@@ -19,15 +19,20 @@
 namespace bemshape::fem {
 
 /// 1-D mass entry for an offset o ∈ {−1, 0, 1} on a cell of length h.
-constexpr double q1_mass_1d(int offset, double h) { return offset == 0 ? h / 3.0 : h / 6.0; }
+constexpr double q1_mass_1d(int offset, double h) {
+  return offset == 0 ? h / 3.0 : h / 6.0;
+}
 /// 1-D stiffness entry for an offset o ∈ {−1, 0, 1} on a cell of length h.
-constexpr double q1_stiffness_1d(int offset, double h) { return offset == 0 ? 1.0 / h : -1.0 / h; }
+constexpr double q1_stiffness_1d(int offset, double h) {
+  return offset == 0 ? 1.0 / h : -1.0 / h;
+}
 
 /// ∫_cell φ_a φ_b for two nodes of one cell with offset o [model units^D].
 template <int D>
 double q1_mass(const std::array<int, D>& offset, double h) {
   double value = 1.0;
-  for (int d = 0; d < D; ++d) value *= q1_mass_1d(offset[d], h);
+  for (int d = 0; d < D; ++d)
+    value *= q1_mass_1d(offset[d], h);
   return value;
 }
 
@@ -38,7 +43,8 @@ double q1_stiffness(const std::array<int, D>& offset, double h) {
   for (int d = 0; d < D; ++d) {
     double term = q1_stiffness_1d(offset[d], h);
     for (int e = 0; e < D; ++e)
-      if (e != d) term *= q1_mass_1d(offset[e], h);
+      if (e != d)
+        term *= q1_mass_1d(offset[e], h);
     value += term;
   }
   return value;
@@ -64,7 +70,8 @@ double q1_centre_gradient_weight(const std::array<int, D>& corner, int i, double
 template <int D>
 constexpr std::array<int, D> corner_of(int bits) {
   std::array<int, D> q{};
-  for (int d = 0; d < D; ++d) q[d] = (bits >> d) & 1;
+  for (int d = 0; d < D; ++d)
+    q[d] = (bits >> d) & 1;
   return q;
 }
 

@@ -15,7 +15,8 @@ namespace {
 template <int D>
 int stencil_index(const std::array<int, D>& o) {
   int index = 0;
-  for (int d = D - 1; d >= 0; --d) index = 3 * index + (o[d] + 1);
+  for (int d = D - 1; d >= 0; --d)
+    index = 3 * index + (o[d] + 1);
   return index;
 }
 
@@ -33,7 +34,8 @@ std::array<int, D> stencil_offset(int index) {
 template <int D>
 GridIndex interior_lines(const std::array<GridIndex, D>& cells) {
   GridIndex n = 1;
-  for (int d = 1; d < D; ++d) n *= cells[d] - 1;
+  for (int d = 1; d < D; ++d)
+    n *= cells[d] - 1;
   return n;
 }
 
@@ -91,11 +93,13 @@ ShapeFeatureOperator<D>::ShapeFeatureOperator(const std::array<GridIndex, D>& ce
   for (int q = 0; q < kCorners; ++q) {
     const auto corner = corner_of<D>(q);
     cell_offset_[q] = 0;
-    for (int d = 0; d < D; ++d) cell_offset_[q] += (1 - corner[d]) * cell_stride[d];
+    for (int d = 0; d < D; ++d)
+      cell_offset_[q] += (1 - corner[d]) * cell_stride[d];
     for (int r = 0; r < kCorners; ++r) {
       const auto other = corner_of<D>(r);
       std::array<int, D> o{};
-      for (int d = 0; d < D; ++d) o[d] = other[d] - corner[d];
+      for (int d = 0; d < D; ++d)
+        o[d] = other[d] - corner[d];
       cell_node_stencil_[q][r] = stencil_index<D>(o);
     }
   }
@@ -104,7 +108,8 @@ ShapeFeatureOperator<D>::ShapeFeatureOperator(const std::array<GridIndex, D>& ce
 template <int D>
 GridIndex ShapeFeatureOperator<D>::num_interior_nodes() const {
   GridIndex n = 1;
-  for (int d = 0; d < D; ++d) n *= cells_[d] - 1;
+  for (int d = 0; d < D; ++d)
+    n *= cells_[d] - 1;
   return n;
 }
 
@@ -113,7 +118,8 @@ bool ShapeFeatureOperator<D>::is_boundary_node(GridIndex node) const {
   for (int d = 0; d < D; ++d) {
     const GridIndex p = node % (cells_[d] + 1);
     node /= cells_[d] + 1;
-    if (p == 0 || p == cells_[d]) return true;
+    if (p == 0 || p == cells_[d])
+      return true;
   }
   return false;
 }
@@ -141,16 +147,19 @@ void ShapeFeatureOperator<D>::apply(const Eigen::MatrixXd& x, Eigen::MatrixXd& y
         const GridIndex cell = cell0 + k;
         const double c0 = c[cell + cell_offset_[0]];
         bool uniform = true;
-        for (int q = 1; q < kCorners; ++q) uniform = uniform && c[cell + cell_offset_[q]] == c0;
+        for (int q = 1; q < kCorners; ++q)
+          uniform = uniform && c[cell + cell_offset_[q]] == c0;
         if (uniform) {
           // Away from the surface all 2^D cells agree (solid or void): one constant stencil.
           for (int s = 0; s < kStencil; ++s)
             line_stencil[s * run + k] = stiffness_stencil_[s] + c0 * mass_stencil_[s];
         } else {
-          for (int s = 0; s < kStencil; ++s) line_stencil[s * run + k] = stiffness_stencil_[s];
+          for (int s = 0; s < kStencil; ++s)
+            line_stencil[s * run + k] = stiffness_stencil_[s];
           for (int q = 0; q < kCorners; ++q) {
             const double cq = c[cell + cell_offset_[q]];
-            if (cq == 0.0) continue;
+            if (cq == 0.0)
+              continue;
             for (int r = 0; r < kCorners; ++r) {
               const int s = cell_node_stencil_[q][r];
               line_stencil[s * run + k] += cq * mass_entry_[s];
@@ -163,7 +172,8 @@ void ShapeFeatureOperator<D>::apply(const Eigen::MatrixXd& x, Eigen::MatrixXd& y
         for (int s = 0; s < kStencil; ++s) {
           const double* __restrict in = xd + j * column + node0 + node_offset_[s];
           const double* __restrict a = line_stencil.data() + s * run;
-          for (GridIndex k = 0; k < run; ++k) out[k] += a[k] * in[k];
+          for (GridIndex k = 0; k < run; ++k)
+            out[k] += a[k] * in[k];
         }
       }
     }
@@ -181,7 +191,8 @@ Eigen::VectorXd ShapeFeatureOperator<D>::diagonal() const {
     const auto [node0, cell0] = line_start<D>(cells_, line);
     for (GridIndex k = 0; k < run; ++k) {
       double c_sum = 0.0;
-      for (int q = 0; q < kCorners; ++q) c_sum += reaction_[cell0 + k + cell_offset_[q]];
+      for (int q = 0; q < kCorners; ++q)
+        c_sum += reaction_[cell0 + k + cell_offset_[q]];
       diag[node0 + k] = stiffness_stencil_[centre] + c_sum * mass_entry_[centre];
     }
   }
@@ -207,7 +218,8 @@ double ShapeFeatureOperator<D>::jacobi_gershgorin_bound() const {
         }
       }
       double row = 0.0;
-      for (int s = 0; s < kStencil; ++s) row += std::abs(stencil[s]);
+      for (int s = 0; s < kStencil; ++s)
+        row += std::abs(stencil[s]);
       bound = std::max(bound, row / stencil[centre]);
     }
   }
@@ -217,7 +229,8 @@ double ShapeFeatureOperator<D>::jacobi_gershgorin_bound() const {
 template <int D>
 bool ShapeFeatureOperator<D>::can_coarsen() const {
   for (int d = 0; d < D; ++d)
-    if (cells_[d] % 2 != 0 || cells_[d] < 4) return false;
+    if (cells_[d] % 2 != 0 || cells_[d] < 4)
+      return false;
   return true;
 }
 
@@ -246,7 +259,8 @@ ShapeFeatureOperator<D> ShapeFeatureOperator<D>::coarsened() const {
     double sum = 0.0;
     for (int q = 0; q < kCorners; ++q) {
       GridIndex fine = fine_base;
-      for (int d = 0; d < D; ++d) fine += ((q >> d) & 1) * fine_stride[d];
+      for (int d = 0; d < D; ++d)
+        fine += ((q >> d) & 1) * fine_stride[d];
       sum += reaction_[fine];
     }
     reaction[index] = weight * sum;
@@ -261,7 +275,8 @@ Eigen::MatrixXd shape_feature_load(const VoxelGrid<D>& grid) {
   const auto& cells = grid.cells;
   std::array<GridIndex, D> cell_stride{};
   cell_stride[0] = 1;
-  for (int d = 1; d < D; ++d) cell_stride[d] = cell_stride[d - 1] * cells[d - 1];
+  for (int d = 1; d < D; ++d)
+    cell_stride[d] = cell_stride[d - 1] * cells[d - 1];
   constexpr int kCorners = 1 << D;
   std::array<GridIndex, kCorners> cell_offset{};
   std::array<std::array<double, D>, kCorners> weight{};
@@ -282,8 +297,10 @@ Eigen::MatrixXd shape_feature_load(const VoxelGrid<D>& grid) {
     for (GridIndex k = 0; k < run; ++k) {
       for (int q = 0; q < kCorners; ++q) {
         const double chi = grid.chi[cell0 + k + cell_offset[q]];
-        if (chi == 0.0f) continue;
-        for (int d = 0; d < D; ++d) b[d * column + node0 + k] += chi * weight[q][d];
+        if (chi == 0.0f)
+          continue;
+        for (int d = 0; d < D; ++d)
+          b[d * column + node0 + k] += chi * weight[q][d];
       }
     }
   }

@@ -70,10 +70,10 @@ class ShapeFeatureOperator {
   static constexpr int kStencil = D == 2 ? 9 : 27;
   static constexpr int kCorners = 1 << D;
   std::array<double, kStencil> stiffness_stencil_{};  // ã·Σ_cells K_e(o), constant
-  std::array<double, kStencil> mass_entry_{};          // M_e(o), one cell
-  std::array<double, kStencil> mass_stencil_{};        // Σ_cells M_e(o), all cells alike
-  std::array<GridIndex, kStencil> node_offset_{};      // linear offset of node p + o
-  std::array<GridIndex, kCorners> cell_offset_{};      // cell p − q relative to cell p − 1
+  std::array<double, kStencil> mass_entry_{};         // M_e(o), one cell
+  std::array<double, kStencil> mass_stencil_{};       // Σ_cells M_e(o), all cells alike
+  std::array<GridIndex, kStencil> node_offset_{};     // linear offset of node p + o
+  std::array<GridIndex, kCorners> cell_offset_{};     // cell p − q relative to cell p − 1
   // For cell corner q (cell p − q) and its node q' (node p + q' − q): stencil index of o.
   std::array<std::array<int, kCorners>, kCorners> cell_node_stencil_{};
 };

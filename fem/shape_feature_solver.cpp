@@ -26,8 +26,7 @@ FemSolution<D> solve_shape_feature_pde(const VoxelGrid<D>& grid,
   const auto start = Clock::now();
   report_progress(progress, "multigrid setup", 0.0);
   const Eigen::MatrixXd load = shape_feature_load<D>(grid);
-  Multigrid<D> multigrid(ShapeFeatureOperator<D>(grid.cells, grid.cell_size,
-                                                 parameters.a_tilde(),
+  Multigrid<D> multigrid(ShapeFeatureOperator<D>(grid.cells, grid.cell_size, parameters.a_tilde(),
                                                  reaction_coefficient<D>(grid, parameters.alpha())),
                          options.multigrid);
   report_progress(progress, "multigrid setup", 1.0);
@@ -48,11 +47,9 @@ FemSolution<D> solve_shape_feature_pde(const VoxelGrid<D>& grid,
 
 template FemSolution<2> solve_shape_feature_pde<2>(const VoxelGrid<2>&,
                                                    const features::FeatureParameters&,
-                                                   const FemSolveOptions&,
-                                                   const ProgressCallback&);
+                                                   const FemSolveOptions&, const ProgressCallback&);
 template FemSolution<3> solve_shape_feature_pde<3>(const VoxelGrid<3>&,
                                                    const features::FeatureParameters&,
-                                                   const FemSolveOptions&,
-                                                   const ProgressCallback&);
+                                                   const FemSolveOptions&, const ProgressCallback&);
 
 }  // namespace bemshape::fem

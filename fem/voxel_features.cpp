@@ -37,10 +37,12 @@ void cell_centre_values(const VoxelGrid<D>& grid, const Eigen::MatrixXd& s_nodes
       for (int q = 0; q < kCorners; ++q) {
         const double v = s_nodes(base + corner_offset[q], i);
         value += v;
-        for (int j = 0; j < D; ++j) gradient[j] += weight[q][j] * v;
+        for (int j = 0; j < D; ++j)
+          gradient[j] += weight[q][j] * v;
       }
       s_cells(e, i) = mean * value;
-      for (int j = 0; j < D; ++j) grad_cells(e, i * D + j) = gradient[j];
+      for (int j = 0; j < D; ++j)
+        grad_cells(e, i * D + j) = gradient[j];
     }
   }
 }
@@ -48,12 +50,14 @@ void cell_centre_values(const VoxelGrid<D>& grid, const Eigen::MatrixXd& s_nodes
 template <int D>
 VoxelFeatures<D> voxel_features(const VoxelGrid<D>& grid, const Eigen::MatrixXd& s_nodes,
                                 features::FeatureParameters parameters) {
-  if (parameters.skeleton_width == 0.0) parameters.skeleton_width = grid.cell_size;
+  if (parameters.skeleton_width == 0.0)
+    parameters.skeleton_width = grid.cell_size;
   VoxelFeatures<D> result;
   Eigen::MatrixXd gradient;
   cell_centre_values<D>(grid, s_nodes, result.s, gradient);
   std::vector<char> inside(static_cast<std::size_t>(grid.num_cells()));
-  for (std::size_t e = 0; e < inside.size(); ++e) inside[e] = grid.chi[e] >= kSolidFraction;
+  for (std::size_t e = 0; e < inside.size(); ++e)
+    inside[e] = grid.chi[e] >= kSolidFraction;
   result.field = features::compute_features<D>(result.s, gradient, inside, parameters);
   return result;
 }

@@ -26,7 +26,8 @@ std::array<GridIndex, D> multigrid_friendly_cells(const std::array<GridIndex, D>
     }
     if (nodes <= max_coarse_nodes || k >= 40) {
       std::array<GridIndex, D> cells{};
-      for (int d = 0; d < D; ++d) cells[d] = coarse[d] * factor;
+      for (int d = 0; d < D; ++d)
+        cells[d] = coarse[d] * factor;
       return cells;
     }
   }
@@ -65,7 +66,8 @@ VoxelGrid<D> grid_around(const Eigen::Matrix<double, D, 1>& lo,
   for (int d = 0; d < D; ++d) {
     const double width = static_cast<double>(grid.cells[d]) * cell_size;
     grid.origin(d) = 0.5 * (lo(d) + hi(d)) - 0.5 * width;
-    if (align_to_lo) grid.origin(d) = lo(d) - std::ceil((lo(d) - grid.origin(d)) / cell_size) * cell_size;
+    if (align_to_lo)
+      grid.origin(d) = lo(d) - std::ceil((lo(d) - grid.origin(d)) / cell_size) * cell_size;
   }
   if (grid.num_cells() > max_cells)
     throw ResourceError("voxel grid: " + std::to_string(grid.num_cells()) +

@@ -37,24 +37,28 @@ struct VoxelGrid {
 
   GridIndex num_cells() const {
     GridIndex n = 1;
-    for (int d = 0; d < D; ++d) n *= cells[d];
+    for (int d = 0; d < D; ++d)
+      n *= cells[d];
     return n;
   }
   GridIndex num_nodes() const {
     GridIndex n = 1;
-    for (int d = 0; d < D; ++d) n *= cells[d] + 1;
+    for (int d = 0; d < D; ++d)
+      n *= cells[d] + 1;
     return n;
   }
   /// Centre of cell `c` (multi-index) [model units].
   Point cell_centre(const std::array<GridIndex, D>& c) const {
     Point x;
-    for (int d = 0; d < D; ++d) x(d) = origin(d) + (static_cast<double>(c[d]) + 0.5) * cell_size;
+    for (int d = 0; d < D; ++d)
+      x(d) = origin(d) + (static_cast<double>(c[d]) + 0.5) * cell_size;
     return x;
   }
   /// Position of node `p` (multi-index) [model units].
   Point node_position(const std::array<GridIndex, D>& p) const {
     Point x;
-    for (int d = 0; d < D; ++d) x(d) = origin(d) + static_cast<double>(p[d]) * cell_size;
+    for (int d = 0; d < D; ++d)
+      x(d) = origin(d) + static_cast<double>(p[d]) * cell_size;
     return x;
   }
   /// Multi-index of cell number `index`.
@@ -68,18 +72,21 @@ struct VoxelGrid {
   }
   GridIndex cell_index(const std::array<GridIndex, D>& c) const {
     GridIndex index = 0;
-    for (int d = D - 1; d >= 0; --d) index = index * cells[d] + c[d];
+    for (int d = D - 1; d >= 0; --d)
+      index = index * cells[d] + c[d];
     return index;
   }
   GridIndex node_index(const std::array<GridIndex, D>& p) const {
     GridIndex index = 0;
-    for (int d = D - 1; d >= 0; --d) index = index * (cells[d] + 1) + p[d];
+    for (int d = D - 1; d >= 0; --d)
+      index = index * (cells[d] + 1) + p[d];
     return index;
   }
   /// Upper corner of Ω_R [model units].
   Point upper_corner() const {
     Point x = origin;
-    for (int d = 0; d < D; ++d) x(d) += static_cast<double>(cells[d]) * cell_size;
+    for (int d = 0; d < D; ++d)
+      x(d) += static_cast<double>(cells[d]) * cell_size;
     return x;
   }
 };
@@ -106,9 +113,10 @@ std::array<GridIndex, D> multigrid_friendly_cells(const std::array<GridIndex, D>
 /// Throws InputError for a non-positive or non-finite cell size or box, ResourceError when
 /// the grid would exceed `max_cells`.
 template <int D>
-VoxelGrid<D> grid_around(const Eigen::Matrix<double, D, 1>& lo, const Eigen::Matrix<double, D, 1>& hi,
-                         double cell_size, const features::FeatureParameters& parameters,
-                         GridIndex max_cells, bool align_to_lo = false);
+VoxelGrid<D> grid_around(const Eigen::Matrix<double, D, 1>& lo,
+                         const Eigen::Matrix<double, D, 1>& hi, double cell_size,
+                         const features::FeatureParameters& parameters, GridIndex max_cells,
+                         bool align_to_lo = false);
 
 /// Default limit on the number of cells of one grid, so that a mistyped cell size is refused
 /// before allocating instead of exhausting memory. A 3-D cell costs about 450 bytes over the

@@ -23,17 +23,23 @@ std::string error_text(const std::filesystem::path& path, const char* action) {
 
 AtomicFileWriter::AtomicFileWriter(std::filesystem::path target) : target_(std::move(target)) {
   std::filesystem::path folder = target_.parent_path();
-  if (folder.empty()) folder = ".";
-  std::string pattern = (folder / ("." + target_.filename().string() + ".tmp-XXXXXX")).string();
+  if (folder.empty())
+    folder = ".";
+  std::string hidden_name = ".";
+  hidden_name += target_.filename().string();
+  hidden_name += ".tmp-XXXXXX";
+  const std::string pattern = (folder / hidden_name).string();
   std::vector<char> name(pattern.begin(), pattern.end());
   name.push_back('\0');
   fd_ = ::mkstemp(name.data());
-  if (fd_ < 0) throw InputError(error_text(target_, "create a temporary file next to"));
+  if (fd_ < 0)
+    throw InputError(error_text(target_, "create a temporary file next to"));
   temporary_ = name.data();
 }
 
 AtomicFileWriter::~AtomicFileWriter() {
-  if (fd_ >= 0) ::close(fd_);
+  if (fd_ >= 0)
+    ::close(fd_);
   if (!committed_ && !temporary_.empty()) {
     std::error_code ignored;
     std::filesystem::remove(temporary_, ignored);
@@ -45,7 +51,8 @@ void AtomicFileWriter::write(const void* data, std::size_t bytes) {
   while (bytes > 0) {
     const ssize_t written = ::write(fd_, p, bytes);
     if (written < 0) {
-      if (errno == EINTR) continue;
+      if (errno == EINTR)
+        continue;
       throw InputError(error_text(target_, "write"));
     }
     p += written;
@@ -57,8 +64,10 @@ void AtomicFileWriter::commit() {
   // Readable like an ordinary new file (mkstemp creates it 0600).
   const mode_t mask = ::umask(0);
   ::umask(mask);
-  if (::fchmod(fd_, 0666 & ~mask) != 0) throw InputError(error_text(target_, "set permissions of"));
-  if (::fsync(fd_) != 0) throw InputError(error_text(target_, "flush"));
+  if (::fchmod(fd_, 0666 & ~mask) != 0)
+    throw InputError(error_text(target_, "set permissions of"));
+  if (::fsync(fd_) != 0)
+    throw InputError(error_text(target_, "flush"));
   if (::close(fd_) != 0) {
     fd_ = -1;
     throw InputError(error_text(target_, "close"));

@@ -27,14 +27,16 @@ inline Rgb viridis(double t) {
                                                                   {92, 200, 99},
                                                                   {170, 220, 50},
                                                                   {253, 231, 37}}};
-  if (!(t > 0.0)) t = 0.0;
+  if (!(t > 0.0))
+    t = 0.0;
   t = std::min(t, 1.0);
   const double u = t * (kAnchors.size() - 1);
   const auto i = std::min<std::size_t>(static_cast<std::size_t>(u), kAnchors.size() - 2);
   const double w = u - static_cast<double>(i);
   Rgb c;
   const auto mix = [&](int k) {
-    return static_cast<std::uint8_t>(std::lround((1.0 - w) * kAnchors[i][k] + w * kAnchors[i + 1][k]));
+    return static_cast<std::uint8_t>(
+        std::lround((1.0 - w) * kAnchors[i][k] + w * kAnchors[i + 1][k]));
   };
   c.r = mix(0);
   c.g = mix(1);

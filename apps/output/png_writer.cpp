@@ -43,16 +43,19 @@ std::string label(double value) {
 }  // namespace
 
 RgbImage::RgbImage(int width, int height, Rgb background)
-    : width_(width), height_(height),
+    : width_(width),
+      height_(height),
       pixels_(static_cast<std::size_t>(width) * static_cast<std::size_t>(height), background) {}
 
 void RgbImage::set(int x, int y, Rgb colour) {
-  if (x >= 0 && y >= 0 && x < width_ && y < height_) at(x, y) = colour;
+  if (x >= 0 && y >= 0 && x < width_ && y < height_)
+    at(x, y) = colour;
 }
 
 void RgbImage::fill_rectangle(int x0, int y0, int x1, int y1, Rgb colour) {
   for (int y = std::max(0, y0); y < std::min(height_, y1); ++y)
-    for (int x = std::max(0, x0); x < std::min(width_, x1); ++x) at(x, y) = colour;
+    for (int x = std::max(0, x0); x < std::min(width_, x1); ++x)
+      at(x, y) = colour;
 }
 
 void RgbImage::draw_line(int x0, int y0, int x1, int y1, Rgb colour) {
@@ -61,7 +64,8 @@ void RgbImage::draw_line(int x0, int y0, int x1, int y1, Rgb colour) {
   int error = dx + dy;
   while (true) {
     set(x0, y0, colour);
-    if (x0 == x1 && y0 == y1) break;
+    if (x0 == x1 && y0 == y1)
+      break;
     const int e2 = 2 * error;
     if (e2 >= dy) {
       error += dy;
@@ -77,7 +81,8 @@ void RgbImage::draw_line(int x0, int y0, int x1, int y1, Rgb colour) {
 void RgbImage::draw_text(int x, int y, const std::string& text, Rgb colour, int scale) {
   for (char c : text) {
     for (const auto& glyph : kFont) {
-      if (glyph.c != c) continue;
+      if (glyph.c != c)
+        continue;
       for (int row = 0; row < 5; ++row)
         for (int col = 0; col < 3; ++col)
           if (glyph.rows[row] & (4 >> col))

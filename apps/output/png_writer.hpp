@@ -39,8 +39,8 @@ class RgbImage {
 struct FieldPictureOptions {
   double minimum = 0.0, maximum = 1.0;  ///< colour range; values are clamped to it
   int pixels_per_cell = 1;
-  Rgb background{255, 255, 255};        ///< where `shown` is 0 (e.g. outside the solid)
-  bool colour_bar = true;               ///< vertical bar with min/mid/max labels on the right
+  Rgb background{255, 255, 255};  ///< where `shown` is 0 (e.g. outside the solid)
+  bool colour_bar = true;         ///< vertical bar with min/mid/max labels on the right
 };
 
 /// Paints `values` (#cells, x fastest, y UP) of an nx×ny grid; cells with shown[e] == 0

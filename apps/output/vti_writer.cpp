@@ -17,7 +17,8 @@ void write_vti(const std::filesystem::path& path, const ImageGrid& grid,
   const bool flat = grid.cells[2] == 0;
   long long cells = 1, points = 1;
   for (int d = 0; d < 3; ++d) {
-    if (d == 2 && flat) continue;
+    if (d == 2 && flat)
+      continue;
     cells *= grid.cells[d];
     points *= grid.cells[d] + 1;
   }
@@ -39,7 +40,8 @@ void write_vti(const std::filesystem::path& path, const ImageGrid& grid,
     xml << "      <" << tag << ">\n";
     for (std::size_t f = 0; f < fields.size(); ++f) {
       const auto& field = fields[f];
-      if (field.location != location) continue;
+      if (field.location != location)
+        continue;
       const long long expected = location == ImageField::Location::point ? points : cells;
       if (field.values == nullptr || field.values->rows() != expected)
         throw InternalError("write_vti: field '" + field.name + "' has " +
@@ -63,7 +65,8 @@ void write_vti(const std::filesystem::path& path, const ImageGrid& grid,
   for (auto location : {ImageField::Location::point, ImageField::Location::cell}) {
     for (std::size_t f = 0; f < fields.size(); ++f) {
       const auto& field = fields[f];
-      if (field.location != location) continue;
+      if (field.location != location)
+        continue;
       const Eigen::MatrixXd& v = *field.values;
       const int components = output_components[f];
       buffer.assign(static_cast<std::size_t>(v.rows()) * components, 0.0f);

@@ -43,7 +43,8 @@ TEST_CASE("PNG round trip keeps pixels, with y pointing up") {
   CHECK(image.solid == l_shape().solid);
   CHECK(image.at({4, 2}));  // top-right pixel
   const auto inverted = read_png_image(path, true);
-  for (std::size_t i = 0; i < image.solid.size(); ++i) CHECK(inverted.solid[i] == !image.solid[i]);
+  for (std::size_t i = 0; i < image.solid.size(); ++i)
+    CHECK(inverted.solid[i] == !image.solid[i]);
 }
 
 TEST_CASE("colour PNG: dark pixels are solid") {
@@ -100,26 +101,32 @@ TEST_CASE("a PNG header claiming an absurd size is refused before allocating") {
   // within libpng's own limits but above kMaxImagePixels), correct CRCs, no pixel data.
   std::vector<unsigned char> bytes = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
   const auto be32 = [](std::uint32_t v) {
-    return std::array<unsigned char, 4>{static_cast<unsigned char>(v >> 24), static_cast<unsigned char>(v >> 16),
-                                        static_cast<unsigned char>(v >> 8), static_cast<unsigned char>(v)};
+    return std::array<unsigned char, 4>{
+        static_cast<unsigned char>(v >> 24), static_cast<unsigned char>(v >> 16),
+        static_cast<unsigned char>(v >> 8), static_cast<unsigned char>(v)};
   };
   const auto append_chunk = [&](const char* type, const std::vector<unsigned char>& data) {
     std::vector<unsigned char> chunk(type, type + 4);
     chunk.insert(chunk.end(), data.begin(), data.end());
-    for (auto b : be32(static_cast<std::uint32_t>(data.size()))) bytes.push_back(b);
+    for (auto b : be32(static_cast<std::uint32_t>(data.size())))
+      bytes.push_back(b);
     bytes.insert(bytes.end(), chunk.begin(), chunk.end());
-    for (auto b : be32(static_cast<std::uint32_t>(crc32(0, chunk.data(), static_cast<unsigned>(chunk.size())))))
+    for (auto b : be32(static_cast<std::uint32_t>(
+             crc32(0, chunk.data(), static_cast<unsigned>(chunk.size())))))
       bytes.push_back(b);
   };
   std::vector<unsigned char> header;
-  for (auto b : be32(60000)) header.push_back(b);
-  for (auto b : be32(60000)) header.push_back(b);
+  for (auto b : be32(60000))
+    header.push_back(b);
+  for (auto b : be32(60000))
+    header.push_back(b);
   header.insert(header.end(), {8, 0, 0, 0, 0});  // 8-bit grey, deflate, no interlace
   append_chunk("IHDR", header);
   append_chunk("IDAT", {});
   append_chunk("IEND", {});
   const auto path = scratch("huge.png");
-  std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()),
-                                              static_cast<std::streamsize>(bytes.size()));
+  std::ofstream(path, std::ios::binary)
+      .write(reinterpret_cast<const char*>(bytes.data()),
+             static_cast<std::streamsize>(bytes.size()));
   CHECK_THROWS_AS(read_png_image(path), ResourceError);
 }

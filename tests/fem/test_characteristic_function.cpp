@@ -25,7 +25,8 @@ TEST_CASE("χ of a disc: binary centre test and area fractions") {
   }
   fill_characteristic_function<2>(grid, disc, 8);
   double fraction = 0.0;
-  for (float c : grid.chi) fraction += c * cell_area;
+  for (float c : grid.chi)
+    fraction += c * cell_area;
   // Both within a perimeter strip of the area; the fraction within 1/8 of that.
   const double strip = 2.0 * M_PI * 0.7 * grid.cell_size;
   CHECK(std::abs(binary - exact) < 0.2 * strip);

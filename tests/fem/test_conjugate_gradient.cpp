@@ -43,7 +43,8 @@ TEST_CASE("CG matches a direct solve for several right-hand sides") {
   CHECK(report.converged);
   const Eigen::MatrixXd exact = op.A.llt().solve(B);
   CHECK((X - exact).norm() <= 1e-9 * exact.norm());
-  for (double r : report.relative_residuals) CHECK(r <= 1e-12);
+  for (double r : report.relative_residuals)
+    CHECK(r <= 1e-12);
 }
 
 TEST_CASE("CG terminates in at most n steps in exact arithmetic (small n)") {

@@ -16,7 +16,8 @@ template <int D>
 Eigen::MatrixXd random_interior(const ShapeFeatureOperator<D>& op, int columns) {
   Eigen::MatrixXd x = Eigen::MatrixXd::Random(op.num_nodes(), columns);
   for (GridIndex i = 0; i < op.num_nodes(); ++i)
-    if (op.is_boundary_node(i)) x.row(i).setZero();
+    if (op.is_boundary_node(i))
+      x.row(i).setZero();
   return x;
 }
 
@@ -53,10 +54,12 @@ TEST_CASE("prolongation reproduces linear functions") {
   const auto coarse = fine.coarsened();
   Eigen::MatrixXd xc(coarse.num_nodes(), 1), xf = Eigen::MatrixXd::Zero(fine.num_nodes(), 1);
   for (GridIndex j = 0; j <= 4; ++j)
-    for (GridIndex i = 0; i <= 4; ++i) xc(j * 5 + i, 0) = 1.0 + 2.0 * i - 3.0 * j;
+    for (GridIndex i = 0; i <= 4; ++i)
+      xc(j * 5 + i, 0) = 1.0 + 2.0 * i - 3.0 * j;
   prolongate_add<2>(fine_cells, xc, xf);
   for (GridIndex j = 1; j < 8; ++j)
-    for (GridIndex i = 1; i < 8; ++i) CHECK(xf(j * 9 + i, 0) == Approx(1.0 + 1.0 * i - 1.5 * j));
+    for (GridIndex i = 1; i < 8; ++i)
+      CHECK(xf(j * 9 + i, 0) == Approx(1.0 + 1.0 * i - 1.5 * j));
 }
 
 TEST_CASE("coarse operator is the Galerkin product PᵀAP for a uniform coefficient") {
@@ -125,9 +128,8 @@ TEST_CASE("CG iteration counts do not grow with the grid (3-D, 16³ to 64³)") {
     grid.cells = {n, n, n};
     grid.cell_size = 2.0 / static_cast<double>(n);
     grid.origin = Eigen::Vector3d::Constant(-1.0);
-    fill_characteristic_function<3>(grid, [](const Eigen::Vector3d& x) {
-      return x.norm() < 0.6 && x.norm() > 0.3;
-    });
+    fill_characteristic_function<3>(
+        grid, [](const Eigen::Vector3d& x) { return x.norm() < 0.6 && x.norm() > 0.3; });
     Multigrid<3> mg(ShapeFeatureOperator<3>(grid.cells, grid.cell_size, 0.018,
                                             reaction_coefficient<3>(grid, 20.0)),
                     options);

@@ -13,7 +13,8 @@ template <int D>
 std::array<int, D> offset(int a, int b) {
   const auto qa = corner_of<D>(a), qb = corner_of<D>(b);
   std::array<int, D> o{};
-  for (int d = 0; d < D; ++d) o[d] = qb[d] - qa[d];
+  for (int d = 0; d < D; ++d)
+    o[d] = qb[d] - qa[d];
   return o;
 }
 
@@ -61,7 +62,8 @@ TEST_CASE("Q1 gradient integrals obey the divergence theorem") {
     for (int q = 0; q < 8; ++q) {
       const double g = q1_gradient_integral<3>(corner_of<3>(q), i, h);
       total += g;
-      if (corner_of<3>(q)[i] == 1) upper += g;
+      if (corner_of<3>(q)[i] == 1)
+        upper += g;
     }
     CHECK(total == Approx(0.0).margin(1e-15));
     CHECK(upper == Approx(h * h));
@@ -69,14 +71,16 @@ TEST_CASE("Q1 gradient integrals obey the divergence theorem") {
 }
 
 TEST_CASE("Q1 centre gradient is exact for trilinear functions") {
-  // u = 1 + 2x − 3y + 0.5z + xy: the centre gradient of the interpolant is (2 + y_c, −3 + x_c, 0.5).
+  // u = 1 + 2x − 3y + 0.5z + xy: the centre gradient of the interpolant is (2 + y_c, −3 + x_c,
+  // 0.5).
   const double h = 0.25;
   std::array<double, 3> grad{};
   for (int q = 0; q < 8; ++q) {
     const auto c = corner_of<3>(q);
     const double x = c[0] * h, y = c[1] * h, z = c[2] * h;
     const double u = 1 + 2 * x - 3 * y + 0.5 * z + x * y;
-    for (int i = 0; i < 3; ++i) grad[i] += q1_centre_gradient_weight<3>(c, i, h) * u;
+    for (int i = 0; i < 3; ++i)
+      grad[i] += q1_centre_gradient_weight<3>(c, i, h) * u;
   }
   CHECK(grad[0] == Approx(2.0 + 0.5 * h));
   CHECK(grad[1] == Approx(-3.0 + 0.5 * h));

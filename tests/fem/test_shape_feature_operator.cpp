@@ -26,7 +26,8 @@ void assemble_by_quadrature(const VoxelGrid<D>& grid, double a_tilde, double alp
     const double chi = grid.chi[e];
     for (int qp = 0; qp < (1 << D); ++qp) {
       std::array<double, D> t{};  // local coordinate in [0, 1]
-      for (int d = 0; d < D; ++d) t[d] = 0.5 + (((qp >> d) & 1) ? g : -g);
+      for (int d = 0; d < D; ++d)
+        t[d] = 0.5 + (((qp >> d) & 1) ? g : -g);
       const double weight = std::pow(h, D) / (1 << D);
       std::array<double, 1 << D> phi{};
       std::array<std::array<double, D>, 1 << D> grad{};
@@ -50,10 +51,12 @@ void assemble_by_quadrature(const VoxelGrid<D>& grid, double a_tilde, double alp
         node[a] = grid.node_index(p);
       }
       for (int a = 0; a < (1 << D); ++a) {
-        for (int d = 0; d < D; ++d) b(node[a], d) += weight * chi * grad[a][d];
+        for (int d = 0; d < D; ++d)
+          b(node[a], d) += weight * chi * grad[a][d];
         for (int k = 0; k < (1 << D); ++k) {
           double dot = 0.0;
-          for (int d = 0; d < D; ++d) dot += grad[a][d] * grad[k][d];
+          for (int d = 0; d < D; ++d)
+            dot += grad[a][d] * grad[k][d];
           A(node[a], node[k]) += weight * (a_tilde * dot + alpha * (1.0 - chi) * phi[a] * phi[k]);
         }
       }
@@ -86,21 +89,25 @@ void check_against_quadrature(const std::array<GridIndex, D>& cells) {
   const GridIndex n = grid.num_nodes();
   Eigen::MatrixXd x = Eigen::MatrixXd::Random(n, 3), y;
   for (GridIndex i = 0; i < n; ++i)
-    if (op.is_boundary_node(i)) x.row(i).setZero();
+    if (op.is_boundary_node(i))
+      x.row(i).setZero();
   op.apply(x, y);
   Eigen::MatrixXd expected = A * x;
   for (GridIndex i = 0; i < n; ++i)
-    if (op.is_boundary_node(i)) expected.row(i).setZero();
+    if (op.is_boundary_node(i))
+      expected.row(i).setZero();
   CHECK((y - expected).norm() <= 1e-12 * expected.norm());
 
   const Eigen::MatrixXd load = shape_feature_load<D>(grid);
   for (GridIndex i = 0; i < n; ++i)
-    if (op.is_boundary_node(i)) b.row(i).setZero();
+    if (op.is_boundary_node(i))
+      b.row(i).setZero();
   CHECK((load - b).norm() <= 1e-12 * b.norm());
 
   const Eigen::VectorXd diag = op.diagonal();
   for (GridIndex i = 0; i < n; ++i)
-    if (!op.is_boundary_node(i)) CHECK(diag[i] == Approx(A(i, i)).epsilon(1e-12));
+    if (!op.is_boundary_node(i))
+      CHECK(diag[i] == Approx(A(i, i)).epsilon(1e-12));
 }
 
 }  // namespace
@@ -115,10 +122,12 @@ TEST_CASE("matrix-free 3-D operator and load equal the quadrature assembly") {
 
 TEST_CASE("operator is symmetric positive definite on interior nodes") {
   const auto grid = random_grid<3>({6, 6, 4}, 3);
-  ShapeFeatureOperator<3> op(grid.cells, grid.cell_size, 0.018, reaction_coefficient<3>(grid, 20.0));
+  ShapeFeatureOperator<3> op(grid.cells, grid.cell_size, 0.018,
+                             reaction_coefficient<3>(grid, 20.0));
   Eigen::MatrixXd x = Eigen::MatrixXd::Random(op.num_nodes(), 2), y;
   for (GridIndex i = 0; i < op.num_nodes(); ++i)
-    if (op.is_boundary_node(i)) x.row(i).setZero();
+    if (op.is_boundary_node(i))
+      x.row(i).setZero();
   op.apply(x, y);
   const double xy = x.col(0).dot(y.col(1)), yx = x.col(1).dot(y.col(0));
   CHECK(xy == Approx(yx).epsilon(1e-12));

@@ -34,9 +34,8 @@ BarError straight_bar(GridIndex n) {
   VoxelGrid<2> grid;
   grid.cells = {n, n};
   grid.cell_size = 1.0 / static_cast<double>(n);
-  fill_characteristic_function<2>(grid, [&](const Eigen::Vector2d& x) {
-    return x.x() > pos && x.x() < pos + h;
-  });
+  fill_characteristic_function<2>(
+      grid, [&](const Eigen::Vector2d& x) { return x.x() > pos && x.x() < pos + h; });
   const auto solution = solve_shape_feature_pde<2>(grid, p);
   const auto exact = ref::interval_1d_solution({p.h0, p.a}, 0.0, 1.0, pos, h);
   double error = 0.0, size = 0.0;
@@ -73,18 +72,19 @@ TEST_CASE("solver reports the multigrid hierarchy and converged residuals") {
   VoxelGrid<2> grid;
   grid.cells = {96, 64};
   grid.cell_size = 0.02;
-  fill_characteristic_function<2>(grid, [](const Eigen::Vector2d& x) {
-    return (x - Eigen::Vector2d(0.9, 0.6)).norm() < 0.3;
-  });
+  fill_characteristic_function<2>(
+      grid, [](const Eigen::Vector2d& x) { return (x - Eigen::Vector2d(0.9, 0.6)).norm() < 0.3; });
   FemSolveOptions options;
   options.relative_tolerance = 1e-10;
   const auto solution = solve_shape_feature_pde<2>(grid, p, options);
   CHECK(solution.report.multigrid_levels >= 3);
-  for (double r : solution.report.relative_residuals) CHECK(r <= 1e-10);
+  for (double r : solution.report.relative_residuals)
+    CHECK(r <= 1e-10);
   // Symmetry of the disc: s_1(x, y) = s_2 with x and y exchanged about the centre (a
   // property of the PDE, not of the discretisation, since the grid is symmetric about it).
   const auto node = [&](GridIndex i, GridIndex j) { return grid.node_index({i, j}); };
-  CHECK(solution.s(node(45 + 7, 30 + 3), 0) == Approx(solution.s(node(45 + 3, 30 + 7), 1)).epsilon(1e-8));
+  CHECK(solution.s(node(45 + 7, 30 + 3), 0) ==
+        Approx(solution.s(node(45 + 3, 30 + 7), 1)).epsilon(1e-8));
 }
 
 TEST_CASE("solver refuses an unfilled grid") {

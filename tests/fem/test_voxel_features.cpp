@@ -35,14 +35,17 @@ constexpr std::array<double, 8> kBarThickness{0.2, 0.25, 0.3, 0.35, 0.4, 0.45, 0
 /// The paper's 8 × 5 image: vertical bars y ∈ [0.5, 4.5), bar i from x = i + 1/4, thickness
 /// kBarThickness[i]; gaps ≥ 0.4 ≫ 1/κ = 0.03, so the bars do not see each other.
 BinaryImage<2> multiple_bars_image(double pixel) {
-  const auto pixels = [pixel](double length) { return static_cast<GridIndex>(std::lround(length / pixel)); };
+  const auto pixels = [pixel](double length) {
+    return static_cast<GridIndex>(std::lround(length / pixel));
+  };
   BinaryImage<2> image;
   image.size = {pixels(8.0), pixels(5.0)};
   image.solid.assign(static_cast<std::size_t>(image.num_pixels()), 0);
   for (std::size_t i = 0; i < kBarThickness.size(); ++i) {
     const GridIndex x0 = pixels(static_cast<double>(i) + 0.25), x1 = x0 + pixels(kBarThickness[i]);
     for (GridIndex y = pixels(0.5); y < pixels(4.5); ++y)
-      for (GridIndex x = x0; x < x1; ++x) image.solid[static_cast<std::size_t>(y * image.size[0] + x)] = 1;
+      for (GridIndex x = x0; x < x1; ++x)
+        image.solid[static_cast<std::size_t>(y * image.size[0] + x)] = 1;
   }
   return image;
 }
@@ -91,9 +94,11 @@ TEST_CASE("multiple bars: 1/f_h linear in thickness with slope 1/h0 and intercep
   std::array<double, 8> inverse{}, thickness{};
   std::array<int, 8> count{};
   for (GridIndex e = 0; e < grid.num_cells(); ++e) {
-    if (grid.chi[e] < kSolidFraction) continue;
+    if (grid.chi[e] < kSolidFraction)
+      continue;
     const Eigen::Vector2d x = grid.cell_centre(grid.cell_multi_index(e));
-    if (x.y() < 2.25 || x.y() > 2.75) continue;
+    if (x.y() < 2.25 || x.y() > 2.75)
+      continue;
     const auto bar = static_cast<std::size_t>(std::floor(x.x()));
     inverse[bar] += 1.0 / features.field.f_h[e];
     thickness[bar] += features.field.h_f[e];
@@ -111,9 +116,10 @@ TEST_CASE("multiple bars: 1/f_h linear in thickness with slope 1/h0 and intercep
     sxx += h * h;
     sxy += h * inverse[i];
     syy += inverse[i] * inverse[i];
-    INFO("bar " << h << ": mean 1/f_h " << inverse[i] << " (1-D: " << h / p.h0 + p.a << "), mean h_f "
-                << thickness[i]);
-    if (h >= p.h0) CHECK(thickness[i] == Approx(h).epsilon(0.02));
+    INFO("bar " << h << ": mean 1/f_h " << inverse[i] << " (1-D: " << h / p.h0 + p.a
+                << "), mean h_f " << thickness[i]);
+    if (h >= p.h0)
+      CHECK(thickness[i] == Approx(h).epsilon(0.02));
   }
   const double slope = (n * sxy - sx * sy) / (n * sxx - sx * sx);
   const double intercept = (sy - slope * sx) / n;
@@ -131,15 +137,16 @@ TEST_CASE("ball: f_h within 2% of the closed form at interior probes") {
   features::FeatureParameters p;
   p.h0 = 0.3;
   const double R = 0.5;
-  const double expected = ref::inverse_thickness({0.3, 0.2}, 3.0 * ref::ball_solution({0.3, 0.2}, R).A);
+  const double expected =
+      ref::inverse_thickness({0.3, 0.2}, 3.0 * ref::ball_solution({0.3, 0.2}, R).A);
   REQUIRE(expected == Approx(0.801142).epsilon(1e-5));
   const auto features = solve_3d(Eigen::Vector3d::Constant(-R), Eigen::Vector3d::Constant(R), 0.015,
                                  p, [R](const Eigen::Vector3d& x) { return x.norm() < R; });
   auto grid = grid_around<3>(Eigen::Vector3d::Constant(-R), Eigen::Vector3d::Constant(R), 0.015, p,
                              kDefaultMaxCells<3>);
   for (const Eigen::Vector3d& probe :
-       {Eigen::Vector3d(0.01, 0.01, 0.01), Eigen::Vector3d(0.2, 0.0, 0.0), Eigen::Vector3d(0.0, -0.2, 0.1),
-        Eigen::Vector3d(0.1, 0.1, -0.2)}) {
+       {Eigen::Vector3d(0.01, 0.01, 0.01), Eigen::Vector3d(0.2, 0.0, 0.0),
+        Eigen::Vector3d(0.0, -0.2, 0.1), Eigen::Vector3d(0.1, 0.1, -0.2)}) {
     INFO("probe " << probe.transpose());
     CHECK(f_h_at<3>(grid, features, probe) == Approx(expected).epsilon(kProbeTolerance));
   }
@@ -153,8 +160,8 @@ TEST_CASE("spherical shell: f_h within 2% of the closed form at mid-wall probes"
   const ref::PdeParameters rp{0.5, 0.2};
   const double expected = ref::inverse_thickness(rp, 3.0 * ref::shell_solution(rp, 0.7, 1.0).A);
   const auto inside = [](const Eigen::Vector3d& x) { return x.norm() > 0.7 && x.norm() < 1.0; };
-  const auto features = solve_3d(Eigen::Vector3d::Constant(-1.0), Eigen::Vector3d::Constant(1.0), 0.025,
-                                 p, inside);
+  const auto features =
+      solve_3d(Eigen::Vector3d::Constant(-1.0), Eigen::Vector3d::Constant(1.0), 0.025, p, inside);
   auto grid = grid_around<3>(Eigen::Vector3d::Constant(-1.0), Eigen::Vector3d::Constant(1.0), 0.025,
                              p, kDefaultMaxCells<3>);
   for (const Eigen::Vector3d& direction :
@@ -180,7 +187,8 @@ TEST_CASE("plate: f_h and h_f match the 1-D closed form in the plate's interior"
   const auto features = solve_3d(lo, hi, 0.015, p, inside);
   auto grid = grid_around<3>(lo, hi, 0.015, p, kDefaultMaxCells<3>);
   for (const Eigen::Vector3d& probe :
-       {Eigen::Vector3d(0.0, 0.0, 0.01), Eigen::Vector3d(0.2, -0.1, 0.1), Eigen::Vector3d(-0.15, 0.2, -0.1)}) {
+       {Eigen::Vector3d(0.0, 0.0, 0.01), Eigen::Vector3d(0.2, -0.1, 0.1),
+        Eigen::Vector3d(-0.15, 0.2, -0.1)}) {
     INFO("probe " << probe.transpose());
     CHECK(f_h_at<3>(grid, features, probe) == Approx(expected).epsilon(kProbeTolerance));
   }

@@ -32,7 +32,8 @@ TEST_CASE("grid covers the box plus the margin and coarsens to a small grid") {
   auto cells = grid.cells;
   while (cells[0] % 2 == 0 && cells[1] % 2 == 0 && cells[2] % 2 == 0 &&
          (cells[0] + 1) * (cells[1] + 1) * (cells[2] + 1) > 1500) {
-    for (auto& c : cells) c /= 2;
+    for (auto& c : cells)
+      c /= 2;
   }
   CHECK((cells[0] + 1) * (cells[1] + 1) * (cells[2] + 1) <= 1500);
 }
