@@ -33,6 +33,7 @@ struct FarFieldRule {
   double min_ratio;
   double max_kappa_diameter;
   const TriangleRule* rule;
+  double min_ratio_squared() const { return min_ratio * min_ratio; }
 };
 
 /// The table, cheapest rule first. Built once.
@@ -43,6 +44,18 @@ const std::array<FarFieldRule, 7>& far_field_rules();
 inline const TriangleRule* select_far_field_rule(double ratio, double kappa_diameter) {
   for (const FarFieldRule& row : far_field_rules())
     if (ratio >= row.min_ratio && kappa_diameter <= row.max_kappa_diameter) return row.rule;
+  return nullptr;
+}
+
+/// The same selection from squared distance and squared diameter (no square root, no division:
+/// the far-field hot path).
+inline const TriangleRule* select_far_field_rule_squared(double distance_squared,
+                                                         double diameter_squared,
+                                                         double kappa_diameter) {
+  for (const FarFieldRule& row : far_field_rules())
+    if (distance_squared >= row.min_ratio_squared() * diameter_squared &&
+        kappa_diameter <= row.max_kappa_diameter)
+      return row.rule;
   return nullptr;
 }
 
@@ -103,23 +116,33 @@ PanelIntegrals integrate_panel(const Kernel& kernel, const Panel& panel, const E
 /// rule selection and accuracy as integrate_panel, no double layer.
 template <class Kernel>
 double single_layer(const Kernel& kernel, const Panel& panel, const Eigen::Vector3d& x) {
-  const double dist = (x - panel.centroid).norm();
+  const double dist2 = (x - panel.centroid).squaredNorm();
   double kappa_diameter = 0.0;
   if constexpr (Kernel::has_exponential_decay) {
-    if (dist - panel.radius > kernel.cutoff_distance()) return 0.0;
+    const double reach = panel.radius + kernel.cutoff_distance();
+    if (dist2 > reach * reach) return 0.0;
     kappa_diameter = kernel.kappa() * panel.diameter;
   }
-  const TriangleRule* rule = select_far_field_rule(dist / panel.diameter, kappa_diameter);
+  const TriangleRule* rule =
+      select_far_field_rule_squared(dist2, panel.diameter * panel.diameter, kappa_diameter);
   if (rule == nullptr) return polar_panel_integrals(kernel, panel, x, false).single_layer;
-  double sum = 0.0;
+  const Eigen::Vector3d xa = x - panel.corners[0];
   const int n = rule->size();
+  const double* xi = rule->xi.data();
+  const double* eta = rule->eta.data();
+  const double* weight = rule->weight.data();
+  double sum = 0.0;
   for (int q = 0; q < n; ++q) {
-    const auto k = static_cast<size_t>(q);
-    const Eigen::Vector3d y =
-        panel.corners[0] + rule->xi[k] * panel.edge1 + rule->eta[k] * panel.edge2;
-    sum += rule->weight[k] * kernel.value((x - y).norm());
+    const double r2 = (xa - xi[q] * panel.edge1 - eta[q] * panel.edge2).squaredNorm();
+    if constexpr (Kernel::has_exponential_decay)
+      sum += weight[q] * kernel.value(std::sqrt(r2));
+    else
+      sum += weight[q] / std::sqrt(r2);
   }
-  return panel.area * sum;
+  if constexpr (Kernel::has_exponential_decay)
+    return panel.area * sum;
+  else
+    return (Kernel::inv_four_pi * panel.area) * sum;
 }
 
 }  // namespace bemshape::bem
