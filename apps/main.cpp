@@ -10,6 +10,8 @@
 
 #include "apps/check_command.hpp"
 #include "apps/exit_codes.hpp"
+#include "apps/features_command.hpp"
+#include "apps/thickness_command.hpp"
 #include "core/errors.hpp"
 
 namespace {
@@ -32,6 +34,8 @@ int main(int argc, char** argv) {
 
   int exit_code = apps::kExitSuccess;
   apps::register_check_command(app, exit_code);
+  apps::register_thickness_command(app, exit_code);
+  apps::register_features_command(app, exit_code);
 
   try {
     app.parse(argc, argv);

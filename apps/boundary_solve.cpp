@@ -1,0 +1,95 @@
+#include "apps/boundary_solve.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+#include "bem/dense_transmission_solver.hpp"
+#include "bem/transmission_parameters.hpp"
+#include "core/errors.hpp"
+#include "core/memory.hpp"
+#include "geometry/isotropic_remeshing.hpp"
+
+namespace bemshape::apps {
+namespace {
+
+std::string number(double x) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.3g", x);
+  return buffer;
+}
+
+/// Memory the dense path may use: --max-memory if given, capped by the usable part of the
+/// available memory (the same budget core/memory.hpp's require_memory applies).
+std::uint64_t dense_budget_bytes(std::uint64_t max_memory_bytes) {
+  const std::uint64_t available = available_memory_bytes();
+  std::uint64_t budget = max_memory_bytes;
+  if (available > 0) {
+    const auto usable = static_cast<std::uint64_t>(kUsableMemoryFraction * double(available));
+    budget = budget == 0 ? usable : std::min(budget, usable);
+  }
+  return budget;
+}
+
+/// The one-line refusal when the dense matrix does not fit: how many faces, how much memory,
+/// and a --max-edge that fits. Face count scales like 1/edge², memory like faces².
+[[noreturn]] void throw_does_not_fit(const BoundarySolveSetup& setup, const BoundarySolveRun& run,
+                                     std::uint64_t budget) {
+  const auto faces = static_cast<double>(run.solver_mesh.num_faces());
+  const double needed = double(bem::dense_solver_memory_bytes(run.solver_mesh.num_faces()));
+  // 10 % below the limit: the remesher's face count for a given edge varies by a few percent.
+  const double fitting_faces = 0.9 * faces * std::sqrt(double(budget) / needed);
+  const double edge = run.max_edge * std::sqrt(faces / std::max(fitting_faces, 1.0));
+  std::ostringstream msg;
+  msg << setup.input << ": the dense BEM solver needs " << number(needed / 1e9) << " GB for "
+      << run.solver_mesh.num_faces() << " solver faces (edge " << number(run.max_edge) << ", "
+      << run.max_edge_rule << ") but only " << number(double(budget) / 1e9) << " GB may be used"
+      << (setup.max_memory_bytes > 0 ? " (--max-memory)" : "") << "; use a coarser mesh, e.g. "
+      << "--max-edge " << number(edge) << " (about " << std::lround(fitting_faces)
+      << " faces; flat walls stay accurate up to --max-edge " << number(2.5 * setup.a * setup.h0)
+      << ")";
+  throw ResourceError(msg.str());
+}
+
+}  // namespace
+
+BoundarySolveRun prepare_and_solve(const BoundarySolveSetup& setup, StageTimes& times,
+                                   const ProgressCallback& progress) {
+  const auto parameters = bem::TransmissionParameters::from_shape(setup.h0, setup.a);
+  if (setup.max_edge && !(std::isfinite(*setup.max_edge) && *setup.max_edge > 0.0))
+    throw InputError("--max-edge must be a positive length, got " + number(*setup.max_edge));
+
+  BoundarySolveRun run;
+  run.input =
+      times.time("read", [&] { return geometry::prepare_mesh_file(setup.input, {}, progress); });
+  if (setup.check_input)
+    setup.check_input(run.input);
+  if (setup.max_edge) {
+    run.max_edge = *setup.max_edge;
+    run.max_edge_rule = "--max-edge";
+  } else {
+    run.max_edge = parameters.default_max_edge();
+    run.max_edge_rule = "default rule 3/kappa = 1.5*a*h0";
+  }
+  run.solver_mesh = times.time("refine", [&] {
+    return geometry::refine_to_edge_length(run.input.mesh, run.max_edge, {}, progress);
+  });
+
+  const std::uint64_t budget = dense_budget_bytes(setup.max_memory_bytes);
+  if (budget > 0 && bem::dense_solver_memory_bytes(run.solver_mesh.num_faces()) > budget)
+    throw_does_not_fit(setup, run, budget);
+  bem::DenseSolverOptions options;
+  options.max_memory_bytes = setup.max_memory_bytes;
+  try {
+    run.solution = bem::solve_transmission_dense(run.solver_mesh, parameters, options, progress);
+  } catch (const ResourceError&) {
+    // The machine's free memory dropped between our check and the allocation.
+    throw_does_not_fit(setup, run, dense_budget_bytes(setup.max_memory_bytes));
+  }
+  times.add("assemble", run.solution.report.assembly_seconds);
+  times.add("solve", run.solution.report.solve_seconds);
+  return run;
+}
+
+}  // namespace bemshape::apps

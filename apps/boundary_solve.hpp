@@ -1,0 +1,49 @@
+#pragma once
+// The stages `bemshape thickness` and `bemshape features` share: read, validate and repair
+// the input (geometry/mesh_preparation.hpp), refine it to the solver's element size
+// (geometry/isotropic_remeshing.hpp) and solve the transmission problem for s_1, s_2, s_3
+// (bem/dense_transmission_solver.hpp).
+//
+// Element size: the longest edge of the solver mesh is about `max_edge` if the user gave it,
+// else the default rule TransmissionParameters::default_max_edge() = 3/κ = 1.5·a·h0
+// [model units].
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+
+#include "apps/stage_times.hpp"
+#include "bem/boundary_solution.hpp"
+#include "core/progress.hpp"
+#include "geometry/mesh_preparation.hpp"
+#include "geometry/surface_mesh.hpp"
+
+namespace bemshape::apps {
+
+struct BoundarySolveSetup {
+  std::string input;                   ///< mesh file
+  double h0 = 0.0;                     ///< characteristic length [model units]
+  double a = 0.2;                      ///< dimensionless diffusion
+  std::optional<double> max_edge;      ///< --max-edge [model units]; default rule if empty
+  std::uint64_t max_memory_bytes = 0;  ///< --max-memory; 0 = what the machine has
+  /// Called after reading, before refining and solving (e.g. to refuse an absurd request
+  /// that depends on the part's size before the expensive stages). May be empty.
+  std::function<void(const geometry::PreparedMesh&)> check_input;
+};
+
+struct BoundarySolveRun {
+  geometry::PreparedMesh input;       ///< the validated, repaired input mesh and its report
+  geometry::SurfaceMesh solver_mesh;  ///< refined mesh the BEM runs on
+  double max_edge = 0.0;              ///< target edge used [model units]
+  std::string max_edge_rule;          ///< "--max-edge" or "default 3/kappa = 1.5*a*h0"
+  bem::BoundarySolution solution;
+};
+
+/// Runs the three stages, timing them in `times` as "read", "refine", "assemble" and
+/// "solve". Throws InputError for unusable input or options and ResourceError (one line
+/// naming --max-edge and a value that fits) when the dense system does not fit in memory.
+BoundarySolveRun prepare_and_solve(const BoundarySolveSetup& setup, StageTimes& times,
+                                   const ProgressCallback& progress);
+
+}  // namespace bemshape::apps

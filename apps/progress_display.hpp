@@ -1,0 +1,57 @@
+#pragma once
+// Progress of a long bemshape run on stderr, fed by the ProgressCallback every library stage
+// takes (core/progress.hpp):
+//
+//   terminal:      one line rewritten in place, "  assemble   42%   12.3 s", at most every
+//                  kRedrawSeconds, finished with a newline when the stage changes;
+//   not terminal:  one line per stage when it ends, "  assemble  done  12.3 s  (total 15.0 s)",
+//                  so logs of batch runs stay short;
+//   quiet:         nothing.
+//
+// Safe to call from several threads (a mutex guards the output).
+
+#include <chrono>
+#include <iosfwd>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <string_view>
+
+#include "core/progress.hpp"
+
+namespace bemshape::apps {
+
+class ProgressDisplay {
+ public:
+  enum class Mode { quiet, lines, live };
+
+  /// quiet → Mode::quiet; otherwise live if stderr is a terminal, else lines.
+  explicit ProgressDisplay(bool quiet);
+  /// Writes to `out` in the given mode (tests).
+  ProgressDisplay(Mode mode, std::ostream& out);
+  ~ProgressDisplay();
+  ProgressDisplay(const ProgressDisplay&) = delete;
+  ProgressDisplay& operator=(const ProgressDisplay&) = delete;
+
+  /// A callback forwarding to update(); valid while this object lives.
+  ProgressCallback callback();
+  /// Reports `fraction` ∈ [0, 1] of `stage` done; a new stage name ends the previous stage.
+  void update(std::string_view stage, double fraction);
+  /// Ends the current stage (prints its final line); called by the destructor too.
+  void finish();
+
+ private:
+  using Clock = std::chrono::steady_clock;
+  void end_stage_locked();
+
+  Mode mode_;
+  std::ostream& out_;
+  std::mutex mutex_;
+  std::string stage_;
+  double fraction_ = 0.0;
+  Clock::time_point start_ = Clock::now();
+  Clock::time_point stage_start_ = start_;
+  Clock::time_point last_draw_{};
+};
+
+}  // namespace bemshape::apps

@@ -1,0 +1,45 @@
+#pragma once
+// Wall time of each stage of a run, in order, for the "timing" section of the reports.
+
+#include <chrono>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace bemshape::apps {
+
+class StageTimes {
+ public:
+  using Clock = std::chrono::steady_clock;
+
+  /// Runs `work()`, adds its wall time [s] to `stage` and returns what it returns.
+  template <class Work>
+  auto time(const std::string& stage, Work&& work) {
+    const auto start = Clock::now();
+    struct Record {
+      StageTimes& times;
+      const std::string& stage;
+      Clock::time_point start;
+      ~Record() { times.add(stage, std::chrono::duration<double>(Clock::now() - start).count()); }
+    } record{*this, stage, start};
+    return work();
+  }
+  /// Adds `seconds` to `stage` (appended if new).
+  void add(const std::string& stage, double seconds) {
+    for (auto& [name, total] : stages_)
+      if (name == stage) {
+        total += seconds;
+        return;
+      }
+    stages_.emplace_back(stage, seconds);
+  }
+  const std::vector<std::pair<std::string, double>>& stages() const { return stages_; }
+  /// Seconds since construction.
+  double elapsed() const { return std::chrono::duration<double>(Clock::now() - start_).count(); }
+
+ private:
+  Clock::time_point start_ = Clock::now();
+  std::vector<std::pair<std::string, double>> stages_;
+};
+
+}  // namespace bemshape::apps

@@ -1,0 +1,379 @@
+#include "apps/thickness_command.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+
+#include "apps/boundary_solve.hpp"
+#include "apps/exit_codes.hpp"
+#include "apps/output/atomic_file.hpp"
+#include "apps/output/csv_writer.hpp"
+#include "apps/output/ply_writer.hpp"
+#include "apps/output/vtp_writer.hpp"
+#include "apps/progress_display.hpp"
+#include "apps/stage_times.hpp"
+#include "apps/surface_features.hpp"
+#include "apps/thickness_statistics.hpp"
+#include "core/errors.hpp"
+#include "core/memory.hpp"
+#include "features/thickness.hpp"
+
+namespace bemshape::apps {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct ThicknessOptions {
+  std::string input;
+  std::optional<double> h0;
+  double a = 0.2;
+  std::string measure = "principal";
+  std::optional<double> min_thickness;
+  std::optional<double> max_edge;
+  std::string output;
+  std::string report_path;
+  int threads = 0;
+  bool quiet = false;
+  double max_memory_mb = 0.0;
+};
+
+enum class OutputFormat { none, vtp, ply, csv };
+
+std::string number(double x) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.6g", x);
+  return buffer;
+}
+
+std::string point(const Eigen::Vector3d& p) {
+  return "(" + number(p.x()) + ", " + number(p.y()) + ", " + number(p.z()) + ")";
+}
+
+nlohmann::json vec(const Eigen::Vector3d& p) {
+  return nlohmann::json::array({p.x(), p.y(), p.z()});
+}
+
+std::string lower_extension(const std::string& path) {
+  std::string ext = fs::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
+}
+
+/// The output format, decided before any work so a typo does not cost a solve.
+OutputFormat output_format(const std::string& path) {
+  if (path.empty())
+    return OutputFormat::none;
+  const std::string ext = lower_extension(path);
+  if (ext == ".vtp")
+    return OutputFormat::vtp;
+  if (ext == ".ply")
+    return OutputFormat::ply;
+  if (ext == ".csv")
+    return OutputFormat::csv;
+  throw InputError(path + ": unknown output format '" + ext +
+                   "'; supported: .vtp (VTK PolyData for ParaView), .ply (binary, vertex colours), "
+                   ".csv (one row per vertex)");
+}
+
+void require_writable_folder(const std::string& path, const char* option) {
+  if (path.empty())
+    return;
+  const fs::path folder = fs::path(path).parent_path();
+  if (!folder.empty() && !fs::is_directory(folder))
+    throw InputError(path + ": the folder of " + option + " does not exist");
+}
+
+struct ThicknessResult {
+  std::string measure_column;  // "h_p" or "h_f"
+  int column = kColumnHp;
+  SurfaceFeatures original;     // on the input mesh
+  Eigen::VectorXd solver_face;  // selected thickness per solver face
+  ThicknessStatistics statistics;
+  std::vector<ThinRegion> regions;
+};
+
+void write_output(const ThicknessOptions& options, OutputFormat format,
+                  const geometry::SurfaceMesh& mesh, const ThicknessResult& result) {
+  const SurfaceFeatures& v = result.original;
+  switch (format) {
+    case OutputFormat::none:
+      return;
+    case OutputFormat::vtp: {
+      const Eigen::MatrixXd vt = v.vertex.col(result.column), ft = v.face.col(result.column);
+      const Eigen::MatrixXd vhf = v.vertex.col(kColumnHf), fhf = v.face.col(kColumnHf);
+      const Eigen::MatrixXd vhp = v.vertex.col(kColumnHp), fhp = v.face.col(kColumnHp);
+      const Eigen::MatrixXd vfh = v.vertex.col(kColumnFh), ffh = v.face.col(kColumnFh);
+      const Eigen::MatrixXd vn = v.vertex.middleCols(kColumnNf, 3);
+      const Eigen::MatrixXd fn = v.face.middleCols(kColumnNf, 3);
+      output::write_vtp(
+          options.output, mesh.vertices(), mesh.faces(),
+          {{"thickness", &vt}, {"h_f", &vhf}, {"h_p", &vhp}, {"f_h", &vfh}, {"n_f", &vn}},
+          {{"thickness", &ft}, {"h_f", &fhf}, {"h_p", &fhp}, {"f_h", &ffh}, {"n_f", &fn}});
+      return;
+    }
+    case OutputFormat::ply: {
+      output::PlyColouring colouring;
+      colouring.colour_minimum = result.statistics.minimum;
+      colouring.colour_maximum = result.statistics.maximum;
+      colouring.comment = "bemshape " + result.measure_column +
+                          " thickness, colours viridis from " + number(colouring.colour_minimum) +
+                          " to " + number(colouring.colour_maximum) +
+                          "; lengths in the input file's units";
+      output::write_ply(options.output, mesh.vertices(), mesh.faces(), v.vertex.col(result.column),
+                        colouring);
+      return;
+    }
+    case OutputFormat::csv: {
+      Eigen::MatrixXd rows(mesh.num_vertices(), 9);
+      rows.leftCols(3) = mesh.vertices();
+      rows.col(3) = v.vertex.col(result.column);
+      rows.col(4) = v.vertex.col(kColumnHf);
+      rows.col(5) = v.vertex.col(kColumnHp);
+      rows.rightCols(3) = v.vertex.middleCols(kColumnNf, 3);
+      output::write_csv(options.output,
+                        {"x", "y", "z", "thickness", "h_f", "h_p", "n_x", "n_y", "n_z"}, rows);
+      return;
+    }
+  }
+}
+
+nlohmann::json region_json(const ThinRegion& r) {
+  return {{"area", r.area},
+          {"min", r.minimum},
+          {"min_location", vec(r.min_location)},
+          {"centroid", vec(r.centroid)},
+          {"faces", r.faces}};
+}
+
+nlohmann::json report_json(const ThicknessOptions& options, double h0, const BoundarySolveRun& run,
+                           const ThicknessResult& result, const StageTimes& times, double peak_mb) {
+  const ThicknessStatistics& s = result.statistics;
+  nlohmann::json parameters = {{"h0", h0},
+                               {"a", options.a},
+                               {"kappa", run.solution.parameters.kappa},
+                               {"measure", options.measure},
+                               {"max_edge", run.max_edge},
+                               {"max_edge_rule", run.max_edge_rule},
+                               {"min_thickness", nullptr},
+                               {"threads", omp_get_max_threads()}};
+  if (options.min_thickness)
+    parameters["min_thickness"] = *options.min_thickness;
+  nlohmann::json check = nullptr;
+  if (options.min_thickness) {
+    nlohmann::json regions = nlohmann::json::array();
+    for (const ThinRegion& r : result.regions)
+      regions.push_back(region_json(r));
+    check = {{"threshold", *options.min_thickness},
+             {"pass", result.regions.empty()},
+             {"regions", regions}};
+  }
+  nlohmann::json timing = nlohmann::json::object();
+  for (const auto& [stage, seconds] : times.stages())
+    timing[stage] = seconds;
+  timing["total"] = times.elapsed();
+  const geometry::MeshReport& input = run.input.report;
+  return {
+      {"bemshape", BEMSHAPE_VERSION},
+      {"command", "thickness"},
+      {"input", options.input},
+      {"units", "lengths in the input file's units"},
+      {"output", options.output.empty() ? nlohmann::json(nullptr) : nlohmann::json(options.output)},
+      {"parameters", parameters},
+      {"mesh",
+       {{"input_faces", input.faces},
+        {"input_vertices", input.vertices},
+        {"solver_faces", run.solver_mesh.num_faces()},
+        {"solver_vertices", run.solver_mesh.num_vertices()},
+        {"solver_max_edge", run.solver_mesh.max_edge_length()},
+        {"area", input.area},
+        {"volume", input.volume},
+        {"repairs", input.repairs}}},
+      {"thickness",
+       {{"measure", result.measure_column},
+        {"min", s.minimum},
+        {"max", s.maximum},
+        {"mean", s.mean},
+        {"median", s.median},
+        {"p05", s.p05},
+        {"p95", s.p95},
+        {"min_location", vec(s.min_location)},
+        {"measured_area", s.measured_area},
+        {"unmeasurable_area", s.unmeasurable_area}}},
+      {"check", check},
+      {"solver",
+       {{"method", run.solution.report.method},
+        {"unknowns", run.solution.report.unknowns},
+        {"iterations", run.solution.report.iterations},
+        {"residual", run.solution.report.residual}}},
+      {"timing", timing},
+      {"memory", {{"peak_mb", peak_mb}}}};
+}
+
+/// Regions listed in the printed report; the JSON report lists all of them.
+constexpr std::size_t kPrintedRegions = 10;
+
+void print_report(std::ostream& out, const ThicknessOptions& options, double h0,
+                  const BoundarySolveRun& run, const ThicknessResult& result,
+                  const StageTimes& times, double peak_mb) {
+  const ThicknessStatistics& s = result.statistics;
+  const auto& sr = run.solution.report;
+  out << "bemshape thickness: " << options.input << "  (lengths in the input file's units)\n"
+      << "  parameters   h0 " << number(h0) << ", a " << number(options.a) << ", measure "
+      << options.measure << " (" << result.measure_column << "), max edge " << number(run.max_edge)
+      << " (" << run.max_edge_rule << ")\n"
+      << "  mesh         " << run.input.report.faces << " input faces, "
+      << run.solver_mesh.num_faces() << " solver faces (longest edge "
+      << number(run.solver_mesh.max_edge_length()) << ")\n"
+      << "  solver       " << sr.method << ", " << sr.unknowns << " unknowns, residual "
+      << number(sr.residual) << '\n'
+      << "  thickness    min " << number(s.minimum) << " at " << point(s.min_location) << '\n'
+      << "               p05 " << number(s.p05) << ", median " << number(s.median) << ", mean "
+      << number(s.mean) << ", p95 " << number(s.p95) << ", max " << number(s.maximum) << '\n';
+  if (s.unmeasurable_area > 0.0)
+    out << "               not measurable (no opposite wall within reach of h0) on area "
+        << number(s.unmeasurable_area) << " of " << number(s.unmeasurable_area + s.measured_area)
+        << '\n';
+  if (options.min_thickness) {
+    const double threshold = *options.min_thickness;
+    if (result.regions.empty()) {
+      out << "  check        PASS: no wall thinner than " << number(threshold) << '\n';
+    } else {
+      double area = 0.0;
+      for (const ThinRegion& r : result.regions)
+        area += r.area;
+      out << "  check        FAIL: " << result.regions.size() << " region"
+          << (result.regions.size() == 1 ? "" : "s") << " thinner than " << number(threshold)
+          << ", total area " << number(area) << '\n';
+      for (std::size_t i = 0; i < std::min(result.regions.size(), kPrintedRegions); ++i) {
+        const ThinRegion& r = result.regions[i];
+        out << "    " << i + 1 << ". min " << number(r.minimum) << " at " << point(r.min_location)
+            << ", area " << number(r.area) << ", centroid " << point(r.centroid) << '\n';
+      }
+      if (result.regions.size() > kPrintedRegions)
+        out << "    ... " << result.regions.size() - kPrintedRegions
+            << " more in the JSON report (--report)\n";
+    }
+  }
+  out << "  timing      ";
+  for (const auto& [stage, seconds] : times.stages())
+    out << ' ' << stage << ' ' << number(seconds) << " s,";
+  out << " total " << number(times.elapsed()) << " s\n"
+      << "  memory       peak " << number(peak_mb) << " MB\n";
+  if (!options.output.empty())
+    out << "  output       " << options.output << '\n';
+}
+
+void run_thickness(const ThicknessOptions& options, int& exit_code) {
+  StageTimes times;
+  if (options.measure != "principal" && options.measure != "paper")
+    throw InputError("--measure must be 'principal' (h_p, the default) or 'paper' (h_f), got '" +
+                     options.measure + "'");
+  const double h0 = options.h0 ? *options.h0 : options.min_thickness.value_or(0.0);
+  if (!options.h0 && !options.min_thickness)
+    throw InputError(
+        "--h0 is required (or --min-thickness, which sets it): choose about the "
+        "smallest wall thickness of interest, in the input file's units (e.g. --h0 2 "
+        "for 2 mm walls in a file in mm)");
+  if (options.min_thickness &&
+      !(std::isfinite(*options.min_thickness) && *options.min_thickness > 0.0))
+    throw InputError("--min-thickness must be a positive length, got " +
+                     number(*options.min_thickness));
+  if (!(options.max_memory_mb >= 0.0))
+    throw InputError("--max-memory must be a non-negative number of MB");
+  const OutputFormat format = output_format(options.output);
+  require_writable_folder(options.output, "-o");
+  require_writable_folder(options.report_path, "--report");
+  if (options.threads < 0)
+    throw InputError("--threads must be positive, got " + std::to_string(options.threads));
+  if (options.threads > 0)
+    omp_set_num_threads(options.threads);
+
+  ProgressDisplay display(options.quiet);
+  BoundarySolveSetup setup;
+  setup.input = options.input;
+  setup.h0 = h0;
+  setup.a = options.a;
+  setup.max_edge = options.max_edge;
+  setup.max_memory_bytes = static_cast<std::uint64_t>(options.max_memory_mb * 1e6);
+  const BoundarySolveRun run = prepare_and_solve(setup, times, display.callback());
+
+  features::FeatureParameters parameters;
+  parameters.h0 = h0;
+  parameters.a = options.a;
+  parameters.skeleton_width = run.max_edge;
+  ThicknessResult result;
+  result.column = options.measure == "paper" ? kColumnHf : kColumnHp;
+  result.measure_column = options.measure == "paper" ? "h_f" : "h_p";
+  const SurfaceFeatures solver_features = times.time("features", [&] {
+    report_progress(display.callback(), "surface features", 0.0);
+    return surface_features(run.solver_mesh, run.solution, parameters);
+  });
+  result.solver_face = solver_features.face.col(result.column);
+  result.statistics =
+      thickness_statistics(run.solver_mesh, result.solver_face, features::kMaxThicknessFactor * h0);
+  if (options.min_thickness)
+    result.regions = thin_regions(run.solver_mesh, result.solver_face, *options.min_thickness);
+  if (format != OutputFormat::none) {
+    result.original = times.time("map_back", [&] {
+      report_progress(display.callback(), "map to input mesh", 0.0);
+      return transfer_features(run.solver_mesh, solver_features, run.input.mesh);
+    });
+    times.time("write", [&] {
+      report_progress(display.callback(), "write " + lower_extension(options.output), 0.0);
+      write_output(options, format, run.input.mesh, result);
+    });
+  }
+  display.finish();
+  const double peak_mb = double(peak_resident_bytes()) / 1e6;
+  if (!options.report_path.empty())
+    output::write_file_atomically(
+        options.report_path, report_json(options, h0, run, result, times, peak_mb).dump(2) + '\n');
+  print_report(std::cout, options, h0, run, result, times, peak_mb);
+  std::cout.flush();
+  exit_code = options.min_thickness && !result.regions.empty() ? kExitCheckFailed : kExitSuccess;
+}
+
+}  // namespace
+
+void register_thickness_command(CLI::App& app, int& exit_code) {
+  auto options = std::make_shared<ThicknessOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "thickness",
+      "Local wall thickness on the surface of a solid part (closed triangle mesh), with an "
+      "optional minimum-wall-thickness check. Lengths are in the input file's units. Exit code "
+      "0, 1 if --min-thickness finds thinner walls, 2 bad input, 3 numerical failure.");
+  cmd->add_option("INPUT", options->input, "Mesh file: .stl (ASCII or binary), .obj, .off, .ply")
+      ->required();
+  cmd->add_option("--h0", options->h0,
+                  "Characteristic length: about the smallest wall thickness of interest, in the "
+                  "file's units (default: --min-thickness)");
+  cmd->add_option("--a", options->a, "Dimensionless diffusion parameter a of the PDE")
+      ->capture_default_str();
+  cmd->add_option("--measure", options->measure,
+                  "principal: h_p, across the wall (inscribed-sphere diameter, CAD meaning); "
+                  "paper: h_f, Yamada's f_h-based thickness")
+      ->capture_default_str();
+  cmd->add_option("--min-thickness", options->min_thickness,
+                  "Check: fail (exit 1) if any wall is thinner than this; lists the thin regions");
+  cmd->add_option("--max-edge", options->max_edge,
+                  "Longest element edge of the solver mesh, in file units (default 1.5*a*h0)");
+  cmd->add_option("-o,--output", options->output,
+                  "Thickness on the input mesh: .vtp (ParaView), .ply (vertex colours), .csv");
+  cmd->add_option("--report", options->report_path, "Also write the report as JSON to this file");
+  cmd->add_option("--threads", options->threads, "Number of threads (default: all cores)");
+  cmd->add_flag("--quiet", options->quiet, "No progress on stderr");
+  cmd->add_option("--max-memory", options->max_memory_mb,
+                  "Memory limit of the solver in MB (default: what the machine has)");
+  cmd->callback([options, &exit_code] { run_thickness(*options, exit_code); });
+}
+
+}  // namespace bemshape::apps

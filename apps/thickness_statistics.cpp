@@ -1,0 +1,123 @@
+#include "apps/thickness_statistics.hpp"
+
+#include <algorithm>
+#include <map>
+#include <numeric>
+#include <utility>
+
+#include "core/errors.hpp"
+
+namespace bemshape::apps {
+
+double weighted_quantile(const Eigen::VectorXd& values, const Eigen::VectorXd& areas, double p) {
+  std::vector<Eigen::Index> order(static_cast<std::size_t>(values.size()));
+  std::iota(order.begin(), order.end(), Eigen::Index{0});
+  std::sort(order.begin(), order.end(),
+            [&](Eigen::Index i, Eigen::Index j) { return values(i) < values(j); });
+  const double total = areas.sum();
+  double before = 0.0;
+  double previous_position = 0.0, previous_value = values(order.front());
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    const Eigen::Index i = order[k];
+    const double position = (before + 0.5 * areas(i)) / total;
+    if (p <= position) {
+      if (k == 0 || position <= previous_position)
+        return values(i);
+      const double w = (p - previous_position) / (position - previous_position);
+      return (1.0 - w) * previous_value + w * values(i);
+    }
+    before += areas(i);
+    previous_position = position;
+    previous_value = values(i);
+  }
+  return previous_value;
+}
+
+ThicknessStatistics thickness_statistics(const geometry::SurfaceMesh& mesh,
+                                         const Eigen::VectorXd& thickness,
+                                         double unmeasurable_from) {
+  std::vector<Eigen::Index> measured;
+  ThicknessStatistics stats;
+  for (Eigen::Index f = 0; f < mesh.num_faces(); ++f) {
+    if (thickness(f) < unmeasurable_from && mesh.face_areas()(f) > 0.0)
+      measured.push_back(f);
+    else
+      stats.unmeasurable_area += mesh.face_areas()(f);
+  }
+  if (measured.empty())
+    throw InputError(
+        "no part of the surface has a measurable thickness at this h0 (every face "
+        "is farther than the PDE reaches from an opposite wall); choose h0 near the "
+        "wall thickness of interest");
+  const auto m = static_cast<Eigen::Index>(measured.size());
+  Eigen::VectorXd values(m), areas(m);
+  for (Eigen::Index k = 0; k < m; ++k) {
+    values(k) = thickness(measured[static_cast<std::size_t>(k)]);
+    areas(k) = mesh.face_areas()(measured[static_cast<std::size_t>(k)]);
+  }
+  Eigen::Index thinnest = 0;
+  stats.minimum = values.minCoeff(&thinnest);
+  stats.maximum = values.maxCoeff();
+  stats.min_location = mesh.face_centroids().row(measured[static_cast<std::size_t>(thinnest)]);
+  stats.measured_area = areas.sum();
+  stats.mean = values.dot(areas) / stats.measured_area;
+  stats.median = weighted_quantile(values, areas, 0.5);
+  stats.p05 = weighted_quantile(values, areas, 0.05);
+  stats.p95 = weighted_quantile(values, areas, 0.95);
+  return stats;
+}
+
+std::vector<ThinRegion> thin_regions(const geometry::SurfaceMesh& mesh,
+                                     const Eigen::VectorXd& thickness, double threshold) {
+  const Eigen::Index nf = mesh.num_faces();
+  // Union-find over thin faces joined through shared edges.
+  std::vector<Eigen::Index> parent(static_cast<std::size_t>(nf));
+  std::iota(parent.begin(), parent.end(), Eigen::Index{0});
+  const auto root = [&parent](Eigen::Index f) {
+    while (parent[static_cast<std::size_t>(f)] != f) {
+      auto& p = parent[static_cast<std::size_t>(f)];
+      p = parent[static_cast<std::size_t>(p)];
+      f = p;
+    }
+    return f;
+  };
+  std::map<std::pair<int, int>, Eigen::Index> first_face_of_edge;
+  for (Eigen::Index f = 0; f < nf; ++f) {
+    if (!(thickness(f) < threshold))
+      continue;
+    for (int k = 0; k < 3; ++k) {
+      const int a = mesh.faces()(f, k), b = mesh.faces()(f, (k + 1) % 3);
+      const auto [it, inserted] =
+          first_face_of_edge.try_emplace({std::min(a, b), std::max(a, b)}, f);
+      if (!inserted)
+        parent[static_cast<std::size_t>(root(f))] = root(it->second);
+    }
+  }
+  std::map<Eigen::Index, ThinRegion> by_root;
+  for (Eigen::Index f = 0; f < nf; ++f) {
+    if (!(thickness(f) < threshold))
+      continue;
+    ThinRegion& region = by_root[root(f)];
+    const double area = mesh.face_areas()(f);
+    const Eigen::Vector3d centroid = mesh.face_centroids().row(f);
+    if (region.faces == 0 || thickness(f) < region.minimum) {
+      region.minimum = thickness(f);
+      region.min_location = centroid;
+    }
+    ++region.faces;
+    region.area += area;
+    region.centroid += area * centroid;
+  }
+  std::vector<ThinRegion> regions;
+  for (auto& [key, region] : by_root) {
+    if (region.area > 0.0)
+      region.centroid /= region.area;
+    regions.push_back(region);
+  }
+  std::sort(regions.begin(), regions.end(), [](const ThinRegion& x, const ThinRegion& y) {
+    return x.minimum != y.minimum ? x.minimum < y.minimum : x.area > y.area;
+  });
+  return regions;
+}
+
+}  // namespace bemshape::apps

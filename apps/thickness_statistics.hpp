@@ -1,0 +1,54 @@
+#pragma once
+// Area-weighted statistics of a per-face thickness on a surface, and the thin regions of a
+// minimum-wall-thickness check.
+//
+//   thickness: #F per-face values [model units]; faces whose value is at or above
+//              `unmeasurable_from` (features' saturation value kMaxThicknessFactor·h0: far
+//              from any opposite wall, see features/thickness.hpp) are left out of the
+//              statistics and counted in unmeasurable_area.
+//
+// Quantiles are of the area distribution: p05 is the thickness below which 5 % of the
+// (measurable) area lies. Each face stands for its area spread at its value, and the
+// quantile is interpolated linearly between the faces' area midpoints.
+//
+// A thin region is a set of faces with thickness < threshold connected through shared
+// edges. Regions are sorted by severity: thinnest minimum first, larger area first on ties.
+
+#include <cstddef>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "geometry/surface_mesh.hpp"
+
+namespace bemshape::apps {
+
+struct ThicknessStatistics {
+  double minimum = 0, maximum = 0, mean = 0, median = 0, p05 = 0, p95 = 0;  // [model units]
+  Eigen::Vector3d min_location = Eigen::Vector3d::Zero();  ///< centroid of the thinnest face
+  double measured_area = 0.0;                              ///< [model units²]
+  double unmeasurable_area = 0.0;                          ///< [model units²]
+};
+
+/// Throws InputError if no face is measurable (no wall opposes any face at this h0).
+ThicknessStatistics thickness_statistics(const geometry::SurfaceMesh& mesh,
+                                         const Eigen::VectorXd& thickness,
+                                         double unmeasurable_from);
+
+/// Area-weighted p-quantile, p ∈ [0, 1], of `values` with weights `areas` (both #F, areas > 0
+/// somewhere); see above.
+double weighted_quantile(const Eigen::VectorXd& values, const Eigen::VectorXd& areas, double p);
+
+struct ThinRegion {
+  std::size_t faces = 0;
+  double area = 0.0;                                       ///< [model units²]
+  double minimum = 0.0;                                    ///< thinnest face value [model units]
+  Eigen::Vector3d min_location = Eigen::Vector3d::Zero();  ///< centroid of the thinnest face
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();      ///< area-weighted centroid
+};
+
+/// Every edge-connected set of faces with thickness < threshold, most severe first.
+std::vector<ThinRegion> thin_regions(const geometry::SurfaceMesh& mesh,
+                                     const Eigen::VectorXd& thickness, double threshold);
+
+}  // namespace bemshape::apps
