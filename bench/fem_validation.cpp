@@ -49,7 +49,7 @@ void one_dimensional() {
   p.a = 0.2;
   const auto exact = ref::interval_1d_solution({0.2, 0.2}, 0.0, 1.0, 0.4, 0.2);
   std::printf(
-      "| cell | kappa*cell | max |s_h - s| / max |s| | h_f at bar centre (exact 0.2) | CG it "
+      "| cell | kappa*cell | max abs(s_h - s) / max abs(s) | h_f at bar centre (exact 0.2) | CG it "
       "|\n|---|---|---|---|---|\n");
   for (long long n : {40, 80, 160, 320, 640}) {
     fem::VoxelGrid<2> grid;
@@ -115,15 +115,22 @@ void solid(const std::string& kind, std::vector<double> cells) {
     const auto solution = fem::solve_shape_feature_pde<3>(grid, p);
     const auto f = fem::voxel_features<3>(grid, solution.s, p);
     double worst = 0.0;
+    std::string signed_errors;
     for (const auto& x : probes) {
       std::array<fem::GridIndex, 3> c{};
       for (int d = 0; d < 3; ++d)
         c[d] = static_cast<fem::GridIndex>(std::floor((x(d) - grid.origin(d)) / cell));
-      worst = std::max(worst, std::abs(f.field.f_h[grid.cell_index(c)] / expected - 1.0));
+      const double error = f.field.f_h[grid.cell_index(c)] / expected - 1.0;
+      worst = std::max(worst, std::abs(error));
+      char text[32];
+      std::snprintf(text, sizeof text, "%s%+.2f%%", signed_errors.empty() ? "" : ", ",
+                    100.0 * error);
+      signed_errors += text;
     }
-    std::printf("| %.3f | %.2f | %lld x %lld x %lld | %.2f%% | %d |\n", cell, p.kappa() * cell,
+    std::printf("| %.3f | %.2f | %lld x %lld x %lld | %.2f%% (%s) | %d |\n", cell, p.kappa() * cell,
                 static_cast<long long>(grid.cells[0]), static_cast<long long>(grid.cells[1]),
-                static_cast<long long>(grid.cells[2]), 100.0 * worst, solution.report.iterations);
+                static_cast<long long>(grid.cells[2]), 100.0 * worst, signed_errors.c_str(),
+                solution.report.iterations);
     std::fflush(stdout);
   }
 }

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <iomanip>
 
 #include "fem/binary_image.hpp"
 #include "fem/characteristic_function.hpp"
@@ -124,7 +125,9 @@ TEST_CASE("multiple bars: 1/f_h linear in thickness with slope 1/h0 and intercep
   const double slope = (n * sxy - sx * sy) / (n * sxx - sx * sx);
   const double intercept = (sy - slope * sx) / n;
   const double r = (n * sxy - sx * sy) / std::sqrt((n * sxx - sx * sx) * (n * syy - sy * sy));
-  INFO("slope " << slope << " intercept " << intercept << " R² " << r * r);
+  INFO(std::setprecision(8) << "slope " << slope << " intercept " << intercept << " R² " << r * r
+                            << " mean 1/f_h of the bars 0.2, 0.25: " << inverse[0] << ", "
+                            << inverse[1]);
   CHECK(r * r >= 0.9999);
   CHECK(slope == Approx(1.0 / p.h0).epsilon(0.02));
   CHECK(intercept == Approx(p.a).epsilon(0.02));
