@@ -11,6 +11,7 @@
 #include "apps/check_command.hpp"
 #include "apps/exit_codes.hpp"
 #include "apps/features_command.hpp"
+#include "apps/fem_command.hpp"
 #include "apps/thickness_command.hpp"
 #include "core/errors.hpp"
 
@@ -36,6 +37,7 @@ int main(int argc, char** argv) {
   apps::register_check_command(app, exit_code);
   apps::register_thickness_command(app, exit_code);
   apps::register_features_command(app, exit_code);
+  apps::register_fem_command(app, exit_code);
 
   try {
     app.parse(argc, argv);
