@@ -57,6 +57,9 @@ std::uint64_t dense_budget_bytes(std::uint64_t max_memory_bytes) {
 BoundarySolveRun prepare_and_solve(const BoundarySolveSetup& setup, StageTimes& times,
                                    const ProgressCallback& progress) {
   const auto parameters = bem::TransmissionParameters::from_shape(setup.h0, setup.a);
+  if (!(setup.sharp_angle_degrees >= 0.0 && setup.sharp_angle_degrees < 180.0))
+    throw InputError("--sharp-angle must be in [0, 180) degrees, got " +
+                     number(setup.sharp_angle_degrees));
   if (setup.max_edge && !(std::isfinite(*setup.max_edge) && *setup.max_edge > 0.0))
     throw InputError("--max-edge must be a positive length, got " + number(*setup.max_edge));
 
@@ -72,8 +75,13 @@ BoundarySolveRun prepare_and_solve(const BoundarySolveSetup& setup, StageTimes& 
     run.max_edge = parameters.default_max_edge();
     run.max_edge_rule = "default rule 3/kappa = 1.5*a*h0";
   }
+  // Each stage is announced when it starts: the libraries report their first progress only
+  // after some work, and the display ends the previous stage when a new name arrives.
+  report_progress(progress, "remeshing", 0.0);
   run.solver_mesh = times.time("refine", [&] {
-    return geometry::refine_to_edge_length(run.input.mesh, run.max_edge, {}, progress);
+    geometry::RemeshingOptions remeshing;
+    remeshing.sharp_angle_degrees = setup.sharp_angle_degrees;
+    return geometry::refine_to_edge_length(run.input.mesh, run.max_edge, remeshing, progress);
   });
 
   const std::uint64_t budget = dense_budget_bytes(setup.max_memory_bytes);
@@ -81,6 +89,7 @@ BoundarySolveRun prepare_and_solve(const BoundarySolveSetup& setup, StageTimes& 
     throw_does_not_fit(setup, run, budget);
   bem::DenseSolverOptions options;
   options.max_memory_bytes = setup.max_memory_bytes;
+  report_progress(progress, "assemble", 0.0);
   try {
     run.solution = bem::solve_transmission_dense(run.solver_mesh, parameters, options, progress);
   } catch (const ResourceError&) {

@@ -16,16 +16,20 @@
 #include "apps/stage_times.hpp"
 #include "bem/boundary_solution.hpp"
 #include "core/progress.hpp"
+#include "geometry/isotropic_remeshing.hpp"
 #include "geometry/mesh_preparation.hpp"
 #include "geometry/surface_mesh.hpp"
 
 namespace bemshape::apps {
 
 struct BoundarySolveSetup {
-  std::string input;                   ///< mesh file
-  double h0 = 0.0;                     ///< characteristic length [model units]
-  double a = 0.2;                      ///< dimensionless diffusion
-  std::optional<double> max_edge;      ///< --max-edge [model units]; default rule if empty
+  std::string input;               ///< mesh file
+  double h0 = 0.0;                 ///< characteristic length [model units]
+  double a = 0.2;                  ///< dimensionless diffusion
+  std::optional<double> max_edge;  ///< --max-edge [model units]; default rule if empty
+  /// --sharp-angle [degrees]: dihedral angle above which an edge is kept as a crease by the
+  /// remesher (geometry::RemeshingOptions::sharp_angle_degrees).
+  double sharp_angle_degrees = geometry::RemeshingOptions{}.sharp_angle_degrees;
   std::uint64_t max_memory_bytes = 0;  ///< --max-memory; 0 = what the machine has
   /// Called after reading, before refining and solving (e.g. to refuse an absurd request
   /// that depends on the part's size before the expensive stages). May be empty.

@@ -42,6 +42,7 @@ struct FeaturesOptions {
   std::optional<double> h0;
   double a = 0.2;
   std::optional<double> max_edge;
+  double sharp_angle = geometry::RemeshingOptions{}.sharp_angle_degrees;
   std::optional<double> skeleton_width;
   int threads = 0;
   bool quiet = false;
@@ -151,6 +152,7 @@ void run_features(const FeaturesOptions& options, int& exit_code) {
   setup.h0 = *options.h0;
   setup.a = options.a;
   setup.max_edge = options.max_edge;
+  setup.sharp_angle_degrees = options.sharp_angle;
   setup.max_memory_bytes = static_cast<std::uint64_t>(options.max_memory_mb * 1e6);
   if (grid_mode)
     setup.check_input = [&options](const geometry::PreparedMesh& input) {
@@ -163,6 +165,7 @@ void run_features(const FeaturesOptions& options, int& exit_code) {
     grid = grid_over(run.input.report.bounding_box, *options.grid_spacing);
     points = grid_points(grid);
   }
+  report_progress(display.callback(), "evaluate", 0.0);
   const bem::PotentialField field = times.time("evaluate", [&] {
     return bem::evaluate_potential(run.solver_mesh, run.solution, points, display.callback());
   });
@@ -171,6 +174,7 @@ void run_features(const FeaturesOptions& options, int& exit_code) {
   parameters.a = options.a;
   parameters.skeleton_width =
       options.skeleton_width.value_or(grid_mode ? *options.grid_spacing : run.max_edge);
+  report_progress(display.callback(), "features", 0.0);
   const features::FeatureField<3> f = times.time("features", [&] {
     return features::compute_features<3>(field.s, field.gradient, field.inside, parameters);
   });
@@ -250,6 +254,11 @@ void register_features_command(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   cmd->add_option("--max-edge", options->max_edge,
                   "Longest element edge of the solver mesh, in file units (default 1.5*a*h0)");
+  cmd->add_option("--sharp-angle", options->sharp_angle,
+                  "Edges with a dihedral angle above this [degrees] are kept as creases when "
+                  "refining; 30 lets the remesher cross the facets of tessellated curved "
+                  "surfaces (fewer, better-shaped solver faces)")
+      ->capture_default_str();
   cmd->add_option("--skeleton-width", options->skeleton_width,
                   "Half-width of the skeleton band (default: grid spacing, or the element size)");
   cmd->add_option("--threads", options->threads, "Number of threads (default: all cores)");

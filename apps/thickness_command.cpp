@@ -38,6 +38,7 @@ struct ThicknessOptions {
   std::string measure = "principal";
   std::optional<double> min_thickness;
   std::optional<double> max_edge;
+  double sharp_angle = geometry::RemeshingOptions{}.sharp_angle_degrees;
   std::string output;
   std::string report_path;
   int threads = 0;
@@ -303,6 +304,7 @@ void run_thickness(const ThicknessOptions& options, int& exit_code) {
   setup.h0 = h0;
   setup.a = options.a;
   setup.max_edge = options.max_edge;
+  setup.sharp_angle_degrees = options.sharp_angle;
   setup.max_memory_bytes = static_cast<std::uint64_t>(options.max_memory_mb * 1e6);
   const BoundarySolveRun run = prepare_and_solve(setup, times, display.callback());
 
@@ -366,6 +368,11 @@ void register_thickness_command(CLI::App& app, int& exit_code) {
                   "Check: fail (exit 1) if any wall is thinner than this; lists the thin regions");
   cmd->add_option("--max-edge", options->max_edge,
                   "Longest element edge of the solver mesh, in file units (default 1.5*a*h0)");
+  cmd->add_option("--sharp-angle", options->sharp_angle,
+                  "Edges with a dihedral angle above this [degrees] are kept as creases when "
+                  "refining; 30 lets the remesher cross the facets of tessellated curved "
+                  "surfaces (fewer, better-shaped solver faces)")
+      ->capture_default_str();
   cmd->add_option("-o,--output", options->output,
                   "Thickness on the input mesh: .vtp (ParaView), .ply (vertex colours), .csv");
   cmd->add_option("--report", options->report_path, "Also write the report as JSON to this file");

@@ -1,0 +1,40 @@
+// make_test_mesh: writes the closed-form solids of the tests (geometry/primitive_meshes.hpp)
+// as binary STL, for reproducing a test's bemshape run by hand:
+//
+//   make_test_mesh sphere RADIUS MAX_EDGE OUT.stl
+//   make_test_mesh box LX LY LZ MAX_EDGE OUT.stl        (centred at the origin)
+//   make_test_mesh cylinder RADIUS LENGTH MAX_EDGE OUT.stl
+#include <cstdlib>
+#include <iostream>
+#include <string>
+
+#include "apps/output/stl_writer.hpp"
+#include "geometry/primitive_meshes.hpp"
+
+int main(int argc, char** argv) {
+  using namespace bemshape;
+  const std::string kind = argc > 1 ? argv[1] : "";
+  const auto arg = [&](int i) { return std::atof(argv[i]); };
+  geometry::SurfaceMesh mesh;
+  std::string out;
+  if (kind == "sphere" && argc == 5) {
+    mesh = geometry::make_geodesic_sphere(arg(2),
+                                          geometry::geodesic_frequency_for_edge(arg(2), arg(3)));
+    out = argv[4];
+  } else if (kind == "box" && argc == 7) {
+    const Eigen::Vector3d half(arg(2) / 2, arg(3) / 2, arg(4) / 2);
+    mesh = geometry::make_box(-half, half, arg(5));
+    out = argv[6];
+  } else if (kind == "cylinder" && argc == 6) {
+    mesh = geometry::make_cylinder(arg(2), arg(3), arg(4));
+    out = argv[5];
+  } else {
+    std::cerr << "usage: make_test_mesh sphere R EDGE OUT | box LX LY LZ EDGE OUT | cylinder R L "
+                 "EDGE OUT\n";
+    return 2;
+  }
+  output::write_binary_stl(out, mesh.vertices(), mesh.faces());
+  std::cout << out << ": " << mesh.num_faces() << " faces, longest edge " << mesh.max_edge_length()
+            << '\n';
+  return 0;
+}

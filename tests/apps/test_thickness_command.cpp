@@ -1,0 +1,357 @@
+// `bemshape thickness` end to end, through the real executable, against the closed forms of
+// docs/theory.md (tests/support/closed_forms.hpp) and against invariances. Solids are
+// generated (geometry/primitive_meshes.hpp) and handed over as binary STL; each solve is kept
+// at N ≲ 2000 faces so the dense path (O(N²) memory, O(N³) time) stays well under a minute
+// on two cores. make_test_mesh (tests/apps) writes the same solids for reproducing a run.
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <cmath>
+
+#include <Eigen/Geometry>
+
+#include "geometry/primitive_meshes.hpp"
+#include "tests/apps/bemshape_runner.hpp"
+#include "tests/apps/output/file_readers.hpp"
+#include "tests/support/closed_forms.hpp"
+
+using namespace bemshape;
+using namespace bemshape::testing;
+
+namespace {
+
+const std::string data = BEMSHAPE_TEST_DATA_DIR;
+
+/// The ball of the validation: R = 0.5, h0 = 0.3, a = 0.2, at the default element size
+/// 1.5·a·h0 = 0.09 (1280 faces).
+constexpr double kBallRadius = 0.5;
+const PdeParameters kParameters{0.3, 0.2};
+
+std::string ball_file(double max_edge, const std::string& name) {
+  return write_mesh(geometry::make_geodesic_sphere(
+                        kBallRadius, geometry::geodesic_frequency_for_edge(kBallRadius, max_edge)),
+                    name);
+}
+
+double max_relative_deviation(const Eigen::VectorXd& values, double reference) {
+  return ((values.array() - reference).abs() / reference).maxCoeff();
+}
+
+}  // namespace
+
+TEST_CASE("ball: surface h_p and h_f within 2 % of the closed form, n_f along the normal") {
+  const BallSolution ball = ball_solution(kParameters, kBallRadius);
+  const double h_p = principal_thickness(kParameters, ball.A);
+  const double h_f = paper_thickness(kParameters, inverse_thickness(kParameters, 3.0 * ball.A));
+  const std::string mesh = ball_file(0.09, "ball.stl");
+  const std::string csv = scratch("ball.csv"), json = scratch("ball.json");
+  const Run r = run_bemshape("thickness '" + mesh + "' --h0 0.3 -o '" + csv + "' --report '" +
+                             json + "' --quiet");
+  CAPTURE(r.out, r.err, h_p, h_f);
+  REQUIRE(r.exit_code == 0);
+  CHECK(r.err.empty());  // --quiet
+
+  const CsvTable table = parse_csv(slurp(csv));
+  CHECK(table.header_line() == "x,y,z,thickness,h_f,h_p,n_x,n_y,n_z");
+  CHECK(table.rows.rows() == 642);                    // one row per vertex of the input
+  CHECK(table.col("thickness") == table.col("h_p"));  // --measure principal is the default
+  CHECK(max_relative_deviation(table.col("h_p"), h_p) < 0.02);
+  CHECK(max_relative_deviation(table.col("h_f"), h_f) < 0.02);
+  for (Eigen::Index v = 0; v < table.rows.rows(); ++v) {
+    const Eigen::Vector3d x(table.rows(v, 0), table.rows(v, 1), table.rows(v, 2));
+    const Eigen::Vector3d n(table.rows(v, 6), table.rows(v, 7), table.rows(v, 8));
+    CHECK(n.dot(x.normalized()) > 0.999);  // s = A·x: n_f is the outward normal
+  }
+
+  const nlohmann::json report = read_json(json);
+  CHECK(report["units"] == "lengths in the input file's units");
+  CHECK(report["parameters"]["h0"] == 0.3);
+  CHECK(report["parameters"]["measure"] == "principal");
+  CHECK(report["parameters"]["max_edge"].get<double>() == Approx(1.5 * 0.2 * 0.3));
+  CHECK(report["parameters"]["max_edge_rule"].get<std::string>().starts_with("default"));
+  CHECK(report["mesh"]["input_faces"] == 1280);
+  CHECK(report["check"].is_null());  // no --min-thickness
+  CHECK(report["solver"]["method"] == "dense-lu");
+  CHECK(report["solver"]["residual"].get<double>() < 1e-10);
+  for (const char* key : {"min", "max", "mean", "median", "p05", "p95"})
+    CHECK(std::abs(report["thickness"][key].get<double>() / h_p - 1.0) < 0.02);
+  const auto& t = report["thickness"];
+  CHECK(t["min"] <= t["p05"]);
+  CHECK(t["p05"] <= t["median"]);
+  CHECK(t["median"] <= t["p95"]);
+  CHECK(t["p95"] <= t["max"]);
+  const Eigen::Vector3d min_location(t["min_location"][0], t["min_location"][1],
+                                     t["min_location"][2]);
+  CHECK(min_location.norm() == Approx(kBallRadius).epsilon(0.02));  // on the surface
+  CHECK(report["memory"]["peak_mb"].get<double>() > 0.0);
+  for (const char* stage : {"read", "refine", "assemble", "solve", "features", "total"})
+    CHECK(report["timing"][stage].get<double>() >= 0.0);
+}
+
+TEST_CASE("ball: --measure paper writes h_f as the thickness; VTP and PLY carry the CSV's values") {
+  // Coarser than the default rule (edge 0.12, 720 faces): this test checks the files, not
+  // the accuracy.
+  const std::string mesh = ball_file(0.12, "ball_coarse.stl");
+  const std::string options = "--h0 0.3 --max-edge 0.12 --measure paper --quiet";
+  const std::string csv = scratch("paper.csv"), vtp = scratch("paper.vtp"),
+                    ply = scratch("paper.ply");
+  for (const std::string& out : {csv, vtp, ply})
+    REQUIRE(run_bemshape("thickness '" + mesh + "' " + options + " -o '" + out + "'").exit_code ==
+            0);
+  const CsvTable table = parse_csv(slurp(csv));
+  CHECK(table.col("thickness") == table.col("h_f"));
+
+  const VtpFile file = parse_vtp(slurp(vtp));
+  REQUIRE(file.points == table.rows.rows());
+  CHECK(file.polys == 720);
+  CHECK(file.coordinates == table.rows.leftCols(3));
+  CHECK(file.point_data.at("thickness").col(0) == table.col("thickness"));
+  CHECK(file.point_data.at("h_p").col(0) == table.col("h_p"));
+  CHECK(file.point_data.at("n_f").col(2) == table.col("n_z"));
+  // Face values: area-weighted means of solver faces on each face, so within the range of
+  // the surface's values.
+  const Eigen::VectorXd faces = file.cell_data.at("thickness").col(0);
+  CHECK(faces.minCoeff() >= 0.99 * table.col("thickness").minCoeff());
+  CHECK(faces.maxCoeff() <= 1.01 * table.col("thickness").maxCoeff());
+
+  const PlyFile colours = parse_ply(slurp(ply), "thickness");
+  REQUIRE(colours.vertices.rows() == table.rows.rows());
+  CHECK(colours.field == table.col("thickness").cast<float>());
+  CHECK(colours.vertices == table.rows.leftCols(3).cast<float>());
+}
+
+TEST_CASE("plate 2 × 2 × 0.3: thickness in the middle within 2 % of 0.3 (CSV and JSON)") {
+  // The default rule (edge 0.09) would give ≈ 3000 faces; flat walls are accurate up to
+  // κ·h ≈ 5, so --max-edge 0.15 (≈ 1500 solver faces) is used. The in-plane size 2 leaves
+  // 3.3·h0 between the middle and the rim, where the rim's influence has decayed.
+  const std::string mesh = write_mesh(
+      geometry::make_box(Eigen::Vector3d(-1, -1, -0.15), Eigen::Vector3d(1, 1, 0.15), 0.15),
+      "plate.stl");
+  const std::string csv = scratch("plate.csv"), json = scratch("plate.json");
+  const Run r = run_bemshape("thickness '" + mesh + "' --h0 0.3 --max-edge 0.15 -o '" + csv +
+                             "' --report '" + json + "' --quiet");
+  CAPTURE(r.out, r.err);
+  REQUIRE(r.exit_code == 0);
+  const CsvTable table = parse_csv(slurp(csv));
+  int middle = 0;
+  for (Eigen::Index v = 0; v < table.rows.rows(); ++v) {
+    if (std::abs(table.rows(v, 0)) > 0.5 || std::abs(table.rows(v, 1)) > 0.5)
+      continue;
+    ++middle;
+    CHECK(table.rows(v, table.column("h_p")) == Approx(0.3).epsilon(0.02));
+    CHECK(table.rows(v, table.column("h_f")) == Approx(0.3).epsilon(0.02));
+    CHECK(std::abs(table.rows(v, table.column("n_z"))) > 0.999);  // across the plate
+  }
+  CHECK(middle > 50);
+  nlohmann::json report = read_json(json);
+  CHECK(report["parameters"]["max_edge_rule"] == "--max-edge");
+  // Within half the thickness of a rim no sphere of diameter 0.3 fits, so the surface reads
+  // thinner there (a band of ≈ 46 % of the area): the whole-surface median says little, but
+  // the upper quantiles are the flat middle.
+  CHECK(report["thickness"]["p95"].get<double>() == Approx(0.3).epsilon(0.02));
+  CHECK(report["thickness"]["max"].get<double>() == Approx(0.3).epsilon(0.02));
+  // And the middle (|x|, |y| < 0.5 on both faces, area 2) is in no region thinner than
+  // 0.98·0.3.
+  const Run check = run_bemshape("thickness '" + mesh +
+                                 "' --h0 0.3 --max-edge 0.15 --min-thickness 0.294 --report '" +
+                                 json + "' --quiet");
+  CHECK(check.exit_code == 1);
+  report = read_json(json);
+  double thin_area = 0.0;
+  for (const auto& region : report["check"]["regions"])
+    thin_area += region["area"].get<double>();
+  CHECK(thin_area > 0.0);
+  CHECK(thin_area < report["mesh"]["area"].get<double>() - 2.0);
+}
+
+TEST_CASE("rod R = 0.3, length 4: h_p and h_f at mid-length within 3 % of the infinite rod") {
+  // --max-edge 0.12 (1344 faces) instead of the default 0.09 (2354 faces, several minutes of
+  // dense LU on two shared cores).
+  const double A = rod_slope(kParameters, 0.3);
+  const double h_p = principal_thickness(kParameters, A);
+  const double h_f = paper_thickness(kParameters, inverse_thickness(kParameters, 2.0 * A));
+  CHECK(h_p == Approx(0.632).margin(0.0005));
+  CHECK(h_f == Approx(0.286).margin(0.0005));
+  const std::string mesh = write_mesh(geometry::make_cylinder(0.3, 4.0, 0.12), "rod.stl");
+  const std::string csv = scratch("rod.csv");
+  const Run r =
+      run_bemshape("thickness '" + mesh + "' --h0 0.3 --max-edge 0.12 -o '" + csv + "' --quiet");
+  CAPTURE(r.out, r.err);
+  REQUIRE(r.exit_code == 0);
+  const CsvTable table = parse_csv(slurp(csv));
+  int middle = 0;
+  for (Eigen::Index v = 0; v < table.rows.rows(); ++v) {
+    if (std::abs(table.rows(v, 2)) > 0.5)
+      continue;
+    ++middle;
+    CAPTURE(table.rows.row(v));
+    CHECK(table.rows(v, table.column("h_p")) == Approx(h_p).epsilon(0.03));
+    CHECK(table.rows(v, table.column("h_f")) == Approx(h_f).epsilon(0.03));
+  }
+  CHECK(middle > 20);
+}
+
+TEST_CASE("invariance: rotation and translation change no thickness; scaling scales them") {
+  // A coarse ball (500 faces, every edge a crease the remesher keeps), so all solver meshes
+  // are the same triangles moved. STL stores float32: for the 1e-6 checks the vertices are
+  // put on a dyadic grid (multiples of 2^-20) and moved by maps that are exact in float32 —
+  // the 120° rotation about (1, 1, 1) (a cyclic permutation of the axes), a dyadic
+  // translation and the scale factor 8 — so every file holds exactly the moved geometry.
+  // A general rotation is checked too, with the tolerance float32 rounding allows.
+  geometry::SurfaceMesh ball = geometry::make_geodesic_sphere(kBallRadius, 5);
+  const double grid = std::ldexp(1.0, -20);
+  ball =
+      geometry::SurfaceMesh((ball.vertices() / grid).array().round().matrix() * grid, ball.faces());
+  Eigen::Matrix3d cyclic;
+  cyclic << 0, 0, 1, 1, 0, 0, 0, 1, 0;
+  const Eigen::Vector3d translation(3.25, -1.5, 0.75);
+  const Eigen::Matrix3d general =
+      Eigen::AngleAxisd(0.7, Eigen::Vector3d(1.0, -2.0, 0.5).normalized()).toRotationMatrix();
+  const auto thickness = [](const geometry::SurfaceMesh& mesh, const std::string& options,
+                            const std::string& name) {
+    const std::string csv = scratch(name + ".csv");
+    const Run r = run_bemshape("thickness '" + write_mesh(mesh, name + ".stl") + "' " + options +
+                               " -o '" + csv + "' --quiet");
+    REQUIRE(r.exit_code == 0);
+    return parse_csv(slurp(csv));
+  };
+  const std::string options = "--h0 0.3 --max-edge 0.12";
+  const CsvTable a = thickness(ball, options, "inv_base");
+  const CsvTable b =
+      thickness(geometry::transformed(ball, cyclic, translation), options, "inv_moved");
+  const CsvTable c =
+      thickness(geometry::transformed(ball, Eigen::Matrix3d::Identity(), {0, 0, 0}, 8.0),
+                "--h0 2.4 --max-edge 0.96", "inv_scaled");
+  const CsvTable d =
+      thickness(geometry::transformed(ball, general, translation), options, "inv_general");
+  REQUIRE(a.rows.rows() == b.rows.rows());
+  REQUIRE(a.rows.rows() == c.rows.rows());
+  REQUIRE(a.rows.rows() == d.rows.rows());
+  CHECK(b.rows.leftCols(3).transpose() ==
+        (cyclic * a.rows.leftCols(3).transpose()).colwise() + translation);
+  for (const char* column : {"h_p", "h_f"}) {
+    CAPTURE(column);
+    const Eigen::VectorXd ta = a.col(column), tb = b.col(column), tc = c.col(column),
+                          td = d.col(column);
+    CHECK(((tb - ta).array().abs() / ta.array()).maxCoeff() < 1e-6);
+    CHECK(((tc - 8.0 * ta).array().abs() / (8.0 * ta.array())).maxCoeff() < 1e-6);
+    // float32 moves the vertices by up to 2e-7 (6e-8 of 3.7), 2e-6 of the 0.1 edges.
+    CHECK(((td - ta).array().abs() / ta.array()).maxCoeff() < 2e-5);
+  }
+  // n_f turns with the part.
+  for (Eigen::Index v = 0; v < a.rows.rows(); ++v) {
+    const Eigen::Vector3d na(a.rows(v, 6), a.rows(v, 7), a.rows(v, 8));
+    const Eigen::Vector3d nb(b.rows(v, 6), b.rows(v, 7), b.rows(v, 8));
+    const Eigen::Vector3d nd(d.rows(v, 6), d.rows(v, 7), d.rows(v, 8));
+    CHECK((cyclic * na - nb).norm() < 1e-6);
+    CHECK((general * na - nd).norm() < 1e-4);
+  }
+}
+
+TEST_CASE(
+    "--min-thickness: a threshold above the thickest wall fails with exit 1 and one "
+    "region covering the ball; one below the minimum passes") {
+  const std::string mesh = ball_file(0.12, "check_ball.stl");
+  const std::string json = scratch("check.json");
+  // --min-thickness alone also sets h0.
+  Run r = run_bemshape("thickness '" + mesh + "' --min-thickness 1.5 --h0 0.3 --max-edge 0.12 " +
+                       "--report '" + json + "' --quiet");
+  CAPTURE(r.out, r.err);
+  CHECK(r.exit_code == 1);
+  CHECK_THAT(r.out, Catch::Contains("FAIL"));
+  nlohmann::json report = read_json(json);
+  const double minimum = report["thickness"]["min"];
+  CHECK(report["check"]["threshold"] == 1.5);
+  CHECK(report["check"]["pass"] == false);
+  REQUIRE(report["check"]["regions"].size() == 1);
+  const auto& region = report["check"]["regions"][0];
+  CHECK(region["area"].get<double>() == Approx(report["mesh"]["area"].get<double>()));
+  CHECK(region["min"].get<double>() == minimum);
+  for (int k = 0; k < 3; ++k)
+    CHECK(std::abs(region["centroid"][k].get<double>()) < 1e-3);  // the ball's centre
+
+  r = run_bemshape("thickness '" + mesh + "' --min-thickness " + std::to_string(0.999 * minimum) +
+                   " --h0 0.3 --max-edge 0.12 --report '" + json + "' --quiet");
+  CHECK(r.exit_code == 0);
+  CHECK_THAT(r.out, Catch::Contains("PASS"));
+  report = read_json(json);
+  CHECK(report["check"]["pass"] == true);
+  CHECK(report["check"]["regions"].empty());
+}
+
+TEST_CASE(
+    "plate_holes.STL (12.7 mm plate): median 12.7 within 3 %, --min-thickness 13 fails "
+    "with the big faces in its largest region, a threshold below the minimum passes") {
+  // The default rule (edge 3.81 mm) gives ~25 000 solver faces, far beyond the dense path.
+  // With every crease kept (--sharp-angle 1, the default) the tessellated hole walls stay as
+  // needles of the plate's height: 1880 faces at --max-edge 40 but 4–5 minutes of assembly
+  // (near-singular quadrature on needles). --sharp-angle 30 lets the remesher cross the hole
+  // facets (volume −0.3 %), and --max-edge 20 (κ·h = 15.7; flat walls do not need more) gives
+  // 1828 well-shaped faces: about 45 s per solve on two cores.
+  const std::string plate = data + "/meshes/plate_holes.STL";
+  const std::string json = scratch("plate_holes.json");
+  const std::string options =
+      " --h0 12.7 --max-edge 20 --sharp-angle 30 --quiet --report '" + json + "'";
+  Run r = run_bemshape("thickness '" + plate + "' --min-thickness 13" + options);
+  CAPTURE(r.out, r.err);
+  CHECK(r.exit_code == 1);
+  nlohmann::json report = read_json(json);
+  CHECK(report["thickness"]["median"].get<double>() == Approx(12.7).epsilon(0.03));
+  CHECK(report["check"]["pass"] == false);
+  const auto& regions = report["check"]["regions"];
+  REQUIRE(!regions.empty());
+  const auto largest = std::max_element(regions.begin(), regions.end(), [](auto& x, auto& y) {
+    return x["area"].template get<double>() < y["area"].template get<double>();
+  });
+  // The two big faces: the surface minus the outer side walls (2·(203.2 + 304.8)·12.7) and the
+  // hole walls; the region covering both is centred between them, mid-plate.
+  const double big_faces = report["mesh"]["area"].get<double>() - 2 * (203.2 + 304.8) * 12.7;
+  CHECK((*largest)["area"].get<double>() > 0.8 * big_faces);
+  CHECK((*largest)["centroid"][0].get<double>() == Approx(101.6).epsilon(0.05));
+  CHECK((*largest)["centroid"][1].get<double>() == Approx(152.4).epsilon(0.05));
+  CHECK((*largest)["centroid"][2].get<double>() == Approx(6.35).margin(1.5));
+  // Sorted by severity: the first region holds the minimum.
+  CHECK(regions[0]["min"].get<double>() == report["thickness"]["min"].get<double>());
+
+  const double minimum = report["thickness"]["min"];
+  r = run_bemshape("thickness '" + plate + "' --min-thickness " + std::to_string(0.999 * minimum) +
+                   options);
+  CHECK(r.exit_code == 0);
+  report = read_json(json);
+  CHECK(report["check"]["pass"] == true);
+  CHECK(report["thickness"]["min"].get<double>() == minimum);  // same run, same numbers
+}
+
+TEST_CASE("usage errors are one line on stderr, exit 2, before any work; no file is left") {
+  const std::string mesh = ball_file(0.12, "usage_ball.stl");
+  Run r = run_bemshape("thickness '" + mesh + "'");
+  CHECK(r.exit_code == 2);
+  CHECK_THAT(r.err, Catch::StartsWith("bemshape: error: --h0 is required"));
+  CHECK_THAT(r.err, Catch::Contains("smallest wall thickness of interest"));
+
+  r = run_bemshape("thickness '" + mesh + "' --h0 0.3 -o '" + scratch("out.xyz") + "'");
+  CHECK(r.exit_code == 2);
+  CHECK_THAT(r.err, Catch::Contains("unknown output format '.xyz'"));
+  for (const char* ext : {".vtp", ".ply", ".csv"})
+    CHECK_THAT(r.err, Catch::Contains(ext));
+  CHECK(r.seconds < 2.0);
+
+  r = run_bemshape("thickness '" + mesh + "' --h0 0.3 --measure median");
+  CHECK(r.exit_code == 2);
+  CHECK_THAT(r.err, Catch::Contains("--measure"));
+
+  // The dense matrix does not fit in 1 MB: one line naming --max-edge, no output file.
+  const std::string out = scratch("never.vtp");
+  r = run_bemshape("thickness '" + mesh + "' --h0 0.3 --max-memory 1 -o '" + out + "' --quiet");
+  CAPTURE(r.err);
+  CHECK(r.exit_code == 2);
+  CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+  CHECK_THAT(r.err, Catch::Contains("--max-edge"));
+  CHECK_THAT(r.err, Catch::Contains("--max-memory"));
+  CHECK_FALSE(fs::exists(out));
+  for (const auto& entry : fs::directory_iterator(scratch_folder()))
+    CHECK_FALSE(entry.path().filename().string().starts_with(".never.vtp"));
+
+  r = run_bemshape("thickness '" + data + "/bad/open_box.stl' --h0 1");
+  CHECK(r.exit_code == 2);
+  CHECK_THAT(r.err, Catch::Contains("open boundary edges"));
+}
