@@ -40,6 +40,7 @@ struct ThicknessOptions {
   std::optional<double> max_edge;
   double sharp_angle = geometry::RemeshingOptions{}.sharp_angle_degrees;
   std::string output;
+  std::string solver_output;
   std::string report_path;
   int threads = 0;
   bool quiet = false;
@@ -56,6 +57,12 @@ std::string number(double x) {
 
 std::string point(const Eigen::Vector3d& p) {
   return "(" + number(p.x()) + ", " + number(p.y()) + ", " + number(p.z()) + ")";
+}
+
+std::string seconds_text(double seconds) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.2f", seconds);
+  return buffer;
 }
 
 nlohmann::json vec(const Eigen::Vector3d& p) {
@@ -102,9 +109,9 @@ struct ThicknessResult {
   std::vector<ThinRegion> regions;
 };
 
-void write_output(const ThicknessOptions& options, OutputFormat format,
-                  const geometry::SurfaceMesh& mesh, const ThicknessResult& result) {
-  const SurfaceFeatures& v = result.original;
+/// Writes `v` (features on `mesh`) to `path` in `format`.
+void write_output(const std::string& path, OutputFormat format, const geometry::SurfaceMesh& mesh,
+                  const SurfaceFeatures& v, const ThicknessResult& result) {
   switch (format) {
     case OutputFormat::none:
       return;
@@ -116,7 +123,7 @@ void write_output(const ThicknessOptions& options, OutputFormat format,
       const Eigen::MatrixXd vn = v.vertex.middleCols(kColumnNf, 3);
       const Eigen::MatrixXd fn = v.face.middleCols(kColumnNf, 3);
       output::write_vtp(
-          options.output, mesh.vertices(), mesh.faces(),
+          path, mesh.vertices(), mesh.faces(),
           {{"thickness", &vt}, {"h_f", &vhf}, {"h_p", &vhp}, {"f_h", &vfh}, {"n_f", &vn}},
           {{"thickness", &ft}, {"h_f", &fhf}, {"h_p", &fhp}, {"f_h", &ffh}, {"n_f", &fn}});
       return;
@@ -129,7 +136,7 @@ void write_output(const ThicknessOptions& options, OutputFormat format,
                           " thickness, colours viridis from " + number(colouring.colour_minimum) +
                           " to " + number(colouring.colour_maximum) +
                           "; lengths in the input file's units";
-      output::write_ply(options.output, mesh.vertices(), mesh.faces(), v.vertex.col(result.column),
+      output::write_ply(path, mesh.vertices(), mesh.faces(), v.vertex.col(result.column),
                         colouring);
       return;
     }
@@ -140,8 +147,8 @@ void write_output(const ThicknessOptions& options, OutputFormat format,
       rows.col(4) = v.vertex.col(kColumnHf);
       rows.col(5) = v.vertex.col(kColumnHp);
       rows.rightCols(3) = v.vertex.middleCols(kColumnNf, 3);
-      output::write_csv(options.output,
-                        {"x", "y", "z", "thickness", "h_f", "h_p", "n_x", "n_y", "n_z"}, rows);
+      output::write_csv(path, {"x", "y", "z", "thickness", "h_f", "h_p", "n_x", "n_y", "n_z"},
+                        rows);
       return;
     }
   }
@@ -188,6 +195,8 @@ nlohmann::json report_json(const ThicknessOptions& options, double h0, const Bou
       {"input", options.input},
       {"units", "lengths in the input file's units"},
       {"output", options.output.empty() ? nlohmann::json(nullptr) : nlohmann::json(options.output)},
+      {"solver_output", options.solver_output.empty() ? nlohmann::json(nullptr)
+                                                      : nlohmann::json(options.solver_output)},
       {"parameters", parameters},
       {"mesh",
        {{"input_faces", input.faces},
@@ -266,11 +275,13 @@ void print_report(std::ostream& out, const ThicknessOptions& options, double h0,
   }
   out << "  timing      ";
   for (const auto& [stage, seconds] : times.stages())
-    out << ' ' << stage << ' ' << number(seconds) << " s,";
-  out << " total " << number(times.elapsed()) << " s\n"
+    out << ' ' << stage << ' ' << seconds_text(seconds) << " s,";
+  out << " total " << seconds_text(times.elapsed()) << " s\n"
       << "  memory       peak " << number(peak_mb) << " MB\n";
   if (!options.output.empty())
     out << "  output       " << options.output << '\n';
+  if (!options.solver_output.empty())
+    out << "  solver mesh  " << options.solver_output << '\n';
 }
 
 void run_thickness(const ThicknessOptions& options, int& exit_code) {
@@ -292,6 +303,8 @@ void run_thickness(const ThicknessOptions& options, int& exit_code) {
     throw InputError("--max-memory must be a non-negative number of MB");
   const OutputFormat format = output_format(options.output);
   require_writable_folder(options.output, "-o");
+  const OutputFormat solver_format = output_format(options.solver_output);
+  require_writable_folder(options.solver_output, "--solver-output");
   require_writable_folder(options.report_path, "--report");
   if (options.threads < 0)
     throw InputError("--threads must be positive, got " + std::to_string(options.threads));
@@ -331,9 +344,14 @@ void run_thickness(const ThicknessOptions& options, int& exit_code) {
     });
     times.time("write", [&] {
       report_progress(display.callback(), "write " + lower_extension(options.output), 0.0);
-      write_output(options, format, run.input.mesh, result);
+      write_output(options.output, format, run.input.mesh, result.original, result);
     });
   }
+  if (solver_format != OutputFormat::none)
+    times.time("write", [&] {
+      report_progress(display.callback(), "write solver mesh", 0.0);
+      write_output(options.solver_output, solver_format, run.solver_mesh, solver_features, result);
+    });
   display.finish();
   const double peak_mb = double(peak_resident_bytes()) / 1e6;
   if (!options.report_path.empty())
@@ -375,6 +393,9 @@ void register_thickness_command(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   cmd->add_option("-o,--output", options->output,
                   "Thickness on the input mesh: .vtp (ParaView), .ply (vertex colours), .csv");
+  cmd->add_option("--solver-output", options->solver_output,
+                  "Also write the thickness on the refined solver mesh (.vtp, .ply, .csv): the "
+                  "values the statistics are computed from, before mapping to the input mesh");
   cmd->add_option("--report", options->report_path, "Also write the report as JSON to this file");
   cmd->add_option("--threads", options->threads, "Number of threads (default: all cores)");
   cmd->add_flag("--quiet", options->quiet, "No progress on stderr");
