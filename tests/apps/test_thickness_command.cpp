@@ -87,7 +87,7 @@ TEST_CASE("ball: surface h_p and h_f within 2 % of the closed form, n_f along th
     CHECK(report["timing"][stage].get<double>() >= 0.0);
 }
 
-TEST_CASE("ball: --measure paper writes h_f as the thickness; VTP and PLY carry the CSV's values") {
+TEST_CASE("ball: --measure paper writes h_f as the thickness and VTP and PLY carry the CSV's values") {
   // Coarser than the default rule (edge 0.12, 720 faces): this test checks the files, not
   // the accuracy.
   const std::string mesh = ball_file(0.12, "ball_coarse.stl");
@@ -190,7 +190,7 @@ TEST_CASE("rod R = 0.3, length 4: h_p and h_f at mid-length within 3 % of the in
   CHECK(middle > 20);
 }
 
-TEST_CASE("invariance: rotation and translation change no thickness; scaling scales them") {
+TEST_CASE("invariance: rotation and translation change no thickness and scaling scales them") {
   // A coarse ball (500 faces, every edge a crease the remesher keeps), so all solver meshes
   // are the same triangles moved. STL stores float32: for the 1e-6 checks the vertices are
   // put on a dyadic grid (multiples of 2^-20) and moved by maps that are exact in float32 —
@@ -248,8 +248,8 @@ TEST_CASE("invariance: rotation and translation change no thickness; scaling sca
 }
 
 TEST_CASE(
-    "--min-thickness: a threshold above the thickest wall fails with exit 1 and one "
-    "region covering the ball; one below the minimum passes") {
+    "minimum-thickness check: a threshold above the thickest wall fails with exit 1 and one "
+    "region covering the ball and one below the minimum passes") {
   const std::string mesh = ball_file(0.12, "check_ball.stl");
   const std::string json = scratch("check.json");
   // --min-thickness alone also sets h0.
@@ -323,7 +323,7 @@ TEST_CASE(
   CHECK(report["thickness"]["min"].get<double>() == minimum);  // same run, same numbers
 }
 
-TEST_CASE("usage errors are one line on stderr, exit 2, before any work; no file is left") {
+TEST_CASE("usage errors are one line on stderr, exit 2, before any work and no file is left") {
   const std::string mesh = ball_file(0.12, "usage_ball.stl");
   Run r = run_bemshape("thickness '" + mesh + "'");
   CHECK(r.exit_code == 2);

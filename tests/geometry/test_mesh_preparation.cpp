@@ -126,7 +126,7 @@ TEST_CASE("inverted and partly inverted meshes are repaired, not refused") {
   CHECK(!validate_mesh(partly.mesh.vertices(), partly.mesh.faces()).inconsistent_edges);
 }
 
-TEST_CASE("a welded STL soup gets shared vertices; the report counts what was merged") {
+TEST_CASE("a welded STL soup gets shared vertices and the report counts what was merged") {
   // Every face with its own three corners, as STL stores them.
   const SurfaceMesh box = make_box(Eigen::Vector3d::Zero(), Eigen::Vector3d::Ones(), 0.5);
   TriangleSoup soup;

@@ -18,7 +18,7 @@ TEST_CASE("duplicate and collapsed faces are dropped without opening the surface
   CHECK(validate_mesh(c.vertices, c.faces).closed_manifold());
 }
 
-TEST_CASE("a zero-area face is removed by splitting its neighbour; the surface is unchanged") {
+TEST_CASE("a zero-area face is removed by splitting its neighbour and the surface is unchanged") {
   // Unit cube of 12 triangles with the top edge p=(1,1,1), q=(0,1,1) split at its midpoint m
   // on one side only: the collinear face (p, q, m) closes the surface.
   Eigen::MatrixX3d v(9, 3);
