@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "apps/report_text.hpp"
 #include "bem/dense_transmission_solver.hpp"
 #include "bem/transmission_parameters.hpp"
 #include "core/errors.hpp"
@@ -13,12 +14,6 @@
 
 namespace bemshape::apps {
 namespace {
-
-std::string number(double x) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.3g", x);
-  return buffer;
-}
 
 /// Memory the dense path may use: --max-memory if given, capped by the usable part of the
 /// available memory (the same budget core/memory.hpp's require_memory applies).
@@ -42,13 +37,14 @@ std::uint64_t dense_budget_bytes(std::uint64_t max_memory_bytes) {
   const double fitting_faces = 0.9 * faces * std::sqrt(double(budget) / needed);
   const double edge = run.max_edge * std::sqrt(faces / std::max(fitting_faces, 1.0));
   std::ostringstream msg;
-  msg << setup.input << ": the dense BEM solver needs " << number(needed / 1e9) << " GB for "
-      << run.solver_mesh.num_faces() << " solver faces (edge " << number(run.max_edge) << ", "
-      << run.max_edge_rule << ") but only " << number(double(budget) / 1e9) << " GB may be used"
+  msg << setup.input << ": the dense BEM solver needs " << number_text(needed / 1e9, 3)
+      << " GB for " << run.solver_mesh.num_faces() << " solver faces (edge "
+      << number_text(run.max_edge, 3) << ", " << run.max_edge_rule << ") but only "
+      << number_text(double(budget) / 1e9, 3) << " GB may be used"
       << (setup.max_memory_bytes > 0 ? " (--max-memory)" : "") << "; use a coarser mesh, e.g. "
-      << "--max-edge " << number(edge) << " (about " << std::lround(fitting_faces)
-      << " faces; flat walls stay accurate up to --max-edge " << number(2.5 * setup.a * setup.h0)
-      << ")";
+      << "--max-edge " << number_text(edge, 3) << " (about " << std::lround(fitting_faces)
+      << " faces; flat walls stay accurate up to --max-edge "
+      << number_text(2.5 * setup.a * setup.h0, 3) << ")";
   throw ResourceError(msg.str());
 }
 
@@ -59,9 +55,10 @@ BoundarySolveRun prepare_and_solve(const BoundarySolveSetup& setup, StageTimes& 
   const auto parameters = bem::TransmissionParameters::from_shape(setup.h0, setup.a);
   if (!(setup.sharp_angle_degrees >= 0.0 && setup.sharp_angle_degrees < 180.0))
     throw InputError("--sharp-angle must be in [0, 180) degrees, got " +
-                     number(setup.sharp_angle_degrees));
+                     number_text(setup.sharp_angle_degrees, 3));
   if (setup.max_edge && !(std::isfinite(*setup.max_edge) && *setup.max_edge > 0.0))
-    throw InputError("--max-edge must be a positive length, got " + number(*setup.max_edge));
+    throw InputError("--max-edge must be a positive length, got " +
+                     number_text(*setup.max_edge, 3));
 
   BoundarySolveRun run;
   run.input =

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "apps/exit_codes.hpp"
+#include "apps/report_text.hpp"
 #include "core/errors.hpp"
 #include "geometry/mesh_preparation.hpp"
 
@@ -22,16 +23,6 @@ struct CheckOptions {
   std::string report_path;
   double weld_tolerance = geometry::kWeldRelativeTolerance;
 };
-
-std::string number(double x) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.6g", x);
-  return buffer;
-}
-
-std::string point(const Eigen::Vector3d& p) {
-  return "(" + number(p.x()) + ", " + number(p.y()) + ", " + number(p.z()) + ")";
-}
 
 const char* status_label(MeshProblem::Status status) {
   switch (status) {
@@ -54,12 +45,12 @@ void print_report(const MeshReport& r, std::ostream& out) {
       << "  vertices        " << r.vertices << '\n'
       << "  shells          " << r.shells << '\n'
       << "  cavities        " << r.cavities << '\n'
-      << "  volume          " << number(r.volume) << " (file units^3)\n"
-      << "  area            " << number(r.area) << " (file units^2)\n"
-      << "  bounding box    " << point(r.bounding_box.min) << " to " << point(r.bounding_box.max)
-      << ", size " << number(extent.x()) << " x " << number(extent.y()) << " x "
-      << number(extent.z()) << '\n'
-      << "  weld tolerance  " << number(r.weld_tolerance) << '\n';
+      << "  volume          " << number_text(r.volume, 6) << " (file units^3)\n"
+      << "  area            " << number_text(r.area, 6) << " (file units^2)\n"
+      << "  bounding box    " << point_text(r.bounding_box.min) << " to "
+      << point_text(r.bounding_box.max) << ", size " << number_text(extent.x(), 6) << " x "
+      << number_text(extent.y(), 6) << " x " << number_text(extent.z(), 6) << '\n'
+      << "  weld tolerance  " << number_text(r.weld_tolerance, 6) << '\n';
   out << "problems:" << (r.problems.empty() ? " none\n" : "\n");
   for (const MeshProblem& p : r.problems)
     out << "  [" << status_label(p.status) << "] "
@@ -98,7 +89,7 @@ nlohmann::json to_json(const MeshReport& r) {
 
 void run_check(const CheckOptions& options, int& exit_code) {
   if (!(options.weld_tolerance >= 0.0 && options.weld_tolerance < 1e-2))
-    throw InputError("--weld-tolerance " + number(options.weld_tolerance) +
+    throw InputError("--weld-tolerance " + number_text(options.weld_tolerance, 6) +
                      " must be in [0, 0.01)");
   geometry::MeshPreparationOptions preparation;
   preparation.weld_relative_tolerance = options.weld_tolerance;

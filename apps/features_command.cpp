@@ -19,6 +19,8 @@
 #include "apps/output/vti_writer.hpp"
 #include "apps/point_table.hpp"
 #include "apps/progress_display.hpp"
+#include "apps/report_text.hpp"
+#include "apps/solver_mesh_options.hpp"
 #include "apps/stage_times.hpp"
 #include "bem/potential_evaluation.hpp"
 #include "core/errors.hpp"
@@ -48,12 +50,6 @@ struct FeaturesOptions {
   bool quiet = false;
   double max_memory_mb = 0.0;
 };
-
-std::string number(double x) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.4g", x);
-  return buffer;
-}
 
 /// Node grid over a bounding box: nodes at origin + i·spacing, symmetric about the box centre
 /// and covering the box with at most one spacing to spare on each side.
@@ -94,11 +90,12 @@ void refuse_large_grid(const FeaturesOptions& options, const geometry::PreparedM
     return;
   // Points scale like 1/spacing³; 5 % margin for the rounding up of the cell counts.
   const double coarser = 1.05 * spacing * std::cbrt(count / kMaxPoints);
-  throw ResourceError(
-      "--grid " + number(spacing) + " gives " + number(count) + " points (" +
-      std::to_string(grid.cells[0] + 1) + " x " + std::to_string(grid.cells[1] + 1) + " x " +
-      std::to_string(grid.cells[2] + 1) + "), more than the limit of " + number(kMaxPoints) +
-      "; use --grid " + number(coarser) + " or coarser, or --points with the points of interest");
+  throw ResourceError("--grid " + number_text(spacing, 4) + " gives " + number_text(count, 4) +
+                      " points (" + std::to_string(grid.cells[0] + 1) + " x " +
+                      std::to_string(grid.cells[1] + 1) + " x " +
+                      std::to_string(grid.cells[2] + 1) + "), more than the limit of " +
+                      number_text(kMaxPoints, 4) + "; use --grid " + number_text(coarser, 4) +
+                      " or coarser, or --points with the points of interest");
 }
 
 std::string lower_extension(const std::string& path) {
@@ -116,7 +113,8 @@ void run_features(const FeaturesOptions& options, int& exit_code) {
         "give exactly one of --points PTS.csv (points of interest) and --grid "
         "SPACING (a regular grid over the part's bounding box)");
   if (grid_mode && !(std::isfinite(*options.grid_spacing) && *options.grid_spacing > 0.0))
-    throw InputError("--grid must be a positive spacing, got " + number(*options.grid_spacing));
+    throw InputError("--grid must be a positive spacing, got " +
+                     number_text(*options.grid_spacing, 4));
   if (!options.h0)
     throw InputError(
         "--h0 is required: choose about the smallest wall thickness of interest, in "
@@ -143,7 +141,7 @@ void run_features(const FeaturesOptions& options, int& exit_code) {
     points = times.time("read_points", [&] { return read_points(options.points_path); });
   if (!grid_mode && double(points.rows()) > kMaxPoints)
     throw ResourceError(options.points_path + ": " + std::to_string(points.rows()) +
-                        " points, more than the limit of " + number(kMaxPoints) +
+                        " points, more than the limit of " + number_text(kMaxPoints, 4) +
                         "; split the file into smaller batches");
 
   ProgressDisplay display(options.quiet);
@@ -213,19 +211,20 @@ void run_features(const FeaturesOptions& options, int& exit_code) {
   if (!options.output.empty()) {
     const auto inside_count = static_cast<long long>(inside.sum());
     std::cout << "bemshape features: " << options.input << "  (lengths in the input file's units)\n"
-              << "  parameters   h0 " << number(*options.h0) << ", a " << number(options.a)
-              << ", max edge " << number(run.max_edge) << " (" << run.max_edge_rule
-              << "), skeleton width " << number(parameters.skeleton_width) << '\n'
+              << "  parameters   h0 " << number_text(*options.h0, 4) << ", a "
+              << number_text(options.a, 4) << ", max edge " << number_text(run.max_edge, 4) << " ("
+              << run.max_edge_rule << "), skeleton width "
+              << number_text(parameters.skeleton_width, 4) << '\n'
               << "  mesh         " << run.input.report.faces << " input faces, "
               << run.solver_mesh.num_faces() << " solver faces\n"
               << "  points       " << np << " (" << inside_count << " inside)";
     if (grid_mode)
       std::cout << ", grid " << grid.cells[0] + 1 << " x " << grid.cells[1] + 1 << " x "
-                << grid.cells[2] + 1 << " spacing " << number(*options.grid_spacing);
+                << grid.cells[2] + 1 << " spacing " << number_text(*options.grid_spacing, 4);
     std::cout << "\n  timing      ";
     for (const auto& [stage, seconds] : times.stages())
-      std::cout << ' ' << stage << ' ' << number(seconds) << " s,";
-    std::cout << " total " << number(times.elapsed()) << " s\n"
+      std::cout << ' ' << stage << ' ' << number_text(seconds, 4) << " s,";
+    std::cout << " total " << number_text(times.elapsed(), 4) << " s\n"
               << "  output       " << options.output << '\n';
   }
   exit_code = kExitSuccess;
@@ -252,13 +251,7 @@ void register_features_command(CLI::App& app, int& exit_code) {
       ->required();
   cmd->add_option("--a", options->a, "Dimensionless diffusion parameter a of the PDE")
       ->capture_default_str();
-  cmd->add_option("--max-edge", options->max_edge,
-                  "Longest element edge of the solver mesh, in file units (default 1.5*a*h0)");
-  cmd->add_option("--sharp-angle", options->sharp_angle,
-                  "Edges with a dihedral angle above this [degrees] are kept as creases when "
-                  "refining; 30 lets the remesher cross the facets of tessellated curved "
-                  "surfaces (fewer, better-shaped solver faces)")
-      ->capture_default_str();
+  add_solver_mesh_options(*cmd, options->max_edge, options->sharp_angle);
   cmd->add_option("--skeleton-width", options->skeleton_width,
                   "Half-width of the skeleton band (default: grid spacing, or the element size)");
   cmd->add_option("--threads", options->threads, "Number of threads (default: all cores)");

@@ -19,6 +19,8 @@
 #include "apps/output/ply_writer.hpp"
 #include "apps/output/vtp_writer.hpp"
 #include "apps/progress_display.hpp"
+#include "apps/report_text.hpp"
+#include "apps/solver_mesh_options.hpp"
 #include "apps/stage_times.hpp"
 #include "apps/surface_features.hpp"
 #include "apps/thickness_statistics.hpp"
@@ -48,16 +50,6 @@ struct ThicknessOptions {
 };
 
 enum class OutputFormat { none, vtp, ply, csv };
-
-std::string number(double x) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.6g", x);
-  return buffer;
-}
-
-std::string point(const Eigen::Vector3d& p) {
-  return "(" + number(p.x()) + ", " + number(p.y()) + ", " + number(p.z()) + ")";
-}
 
 std::string seconds_text(double seconds) {
   char buffer[32];
@@ -132,10 +124,10 @@ void write_output(const std::string& path, OutputFormat format, const geometry::
       output::PlyColouring colouring;
       colouring.colour_minimum = result.statistics.minimum;
       colouring.colour_maximum = result.statistics.maximum;
-      colouring.comment = "bemshape " + result.measure_column +
-                          " thickness, colours viridis from " + number(colouring.colour_minimum) +
-                          " to " + number(colouring.colour_maximum) +
-                          "; lengths in the input file's units";
+      colouring.comment =
+          "bemshape " + result.measure_column + " thickness, colours viridis from " +
+          number_text(colouring.colour_minimum, 6) + " to " +
+          number_text(colouring.colour_maximum, 6) + "; lengths in the input file's units";
       output::write_ply(path, mesh.vertices(), mesh.faces(), v.vertex.col(result.column),
                         colouring);
       return;
@@ -237,36 +229,39 @@ void print_report(std::ostream& out, const ThicknessOptions& options, double h0,
   const ThicknessStatistics& s = result.statistics;
   const auto& sr = run.solution.report;
   out << "bemshape thickness: " << options.input << "  (lengths in the input file's units)\n"
-      << "  parameters   h0 " << number(h0) << ", a " << number(options.a) << ", measure "
-      << options.measure << " (" << result.measure_column << "), max edge " << number(run.max_edge)
-      << " (" << run.max_edge_rule << ")\n"
+      << "  parameters   h0 " << number_text(h0, 6) << ", a " << number_text(options.a, 6)
+      << ", measure " << options.measure << " (" << result.measure_column << "), max edge "
+      << number_text(run.max_edge, 6) << " (" << run.max_edge_rule << ")\n"
       << "  mesh         " << run.input.report.faces << " input faces, "
       << run.solver_mesh.num_faces() << " solver faces (longest edge "
-      << number(run.solver_mesh.max_edge_length()) << ")\n"
+      << number_text(run.solver_mesh.max_edge_length(), 6) << ")\n"
       << "  solver       " << sr.method << ", " << sr.unknowns << " unknowns, residual "
-      << number(sr.residual) << '\n'
-      << "  thickness    min " << number(s.minimum) << " at " << point(s.min_location) << '\n'
-      << "               p05 " << number(s.p05) << ", median " << number(s.median) << ", mean "
-      << number(s.mean) << ", p95 " << number(s.p95) << ", max " << number(s.maximum) << '\n';
+      << number_text(sr.residual, 6) << '\n'
+      << "  thickness    min " << number_text(s.minimum, 6) << " at " << point_text(s.min_location)
+      << '\n'
+      << "               p05 " << number_text(s.p05, 6) << ", median " << number_text(s.median, 6)
+      << ", mean " << number_text(s.mean, 6) << ", p95 " << number_text(s.p95, 6) << ", max "
+      << number_text(s.maximum, 6) << '\n';
   if (s.unmeasurable_area > 0.0)
     out << "               not measurable (no opposite wall within reach of h0) on area "
-        << number(s.unmeasurable_area) << " of " << number(s.unmeasurable_area + s.measured_area)
-        << '\n';
+        << number_text(s.unmeasurable_area, 6) << " of "
+        << number_text(s.unmeasurable_area + s.measured_area, 6) << '\n';
   if (options.min_thickness) {
     const double threshold = *options.min_thickness;
     if (result.regions.empty()) {
-      out << "  check        PASS: no wall thinner than " << number(threshold) << '\n';
+      out << "  check        PASS: no wall thinner than " << number_text(threshold, 6) << '\n';
     } else {
       double area = 0.0;
       for (const ThinRegion& r : result.regions)
         area += r.area;
       out << "  check        FAIL: " << result.regions.size() << " region"
-          << (result.regions.size() == 1 ? "" : "s") << " thinner than " << number(threshold)
-          << ", total area " << number(area) << '\n';
+          << (result.regions.size() == 1 ? "" : "s") << " thinner than "
+          << number_text(threshold, 6) << ", total area " << number_text(area, 6) << '\n';
       for (std::size_t i = 0; i < std::min(result.regions.size(), kPrintedRegions); ++i) {
         const ThinRegion& r = result.regions[i];
-        out << "    " << i + 1 << ". min " << number(r.minimum) << " at " << point(r.min_location)
-            << ", area " << number(r.area) << ", centroid " << point(r.centroid) << '\n';
+        out << "    " << i + 1 << ". min " << number_text(r.minimum, 6) << " at "
+            << point_text(r.min_location) << ", area " << number_text(r.area, 6) << ", centroid "
+            << point_text(r.centroid) << '\n';
       }
       if (result.regions.size() > kPrintedRegions)
         out << "    ... " << result.regions.size() - kPrintedRegions
@@ -277,7 +272,7 @@ void print_report(std::ostream& out, const ThicknessOptions& options, double h0,
   for (const auto& [stage, seconds] : times.stages())
     out << ' ' << stage << ' ' << seconds_text(seconds) << " s,";
   out << " total " << seconds_text(times.elapsed()) << " s\n"
-      << "  memory       peak " << number(peak_mb) << " MB\n";
+      << "  memory       peak " << number_text(peak_mb, 6) << " MB\n";
   if (!options.output.empty())
     out << "  output       " << options.output << '\n';
   if (!options.solver_output.empty())
@@ -298,7 +293,7 @@ void run_thickness(const ThicknessOptions& options, int& exit_code) {
   if (options.min_thickness &&
       !(std::isfinite(*options.min_thickness) && *options.min_thickness > 0.0))
     throw InputError("--min-thickness must be a positive length, got " +
-                     number(*options.min_thickness));
+                     number_text(*options.min_thickness, 6));
   if (!(options.max_memory_mb >= 0.0))
     throw InputError("--max-memory must be a non-negative number of MB");
   const OutputFormat format = output_format(options.output);
@@ -384,13 +379,7 @@ void register_thickness_command(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   cmd->add_option("--min-thickness", options->min_thickness,
                   "Check: fail (exit 1) if any wall is thinner than this; lists the thin regions");
-  cmd->add_option("--max-edge", options->max_edge,
-                  "Longest element edge of the solver mesh, in file units (default 1.5*a*h0)");
-  cmd->add_option("--sharp-angle", options->sharp_angle,
-                  "Edges with a dihedral angle above this [degrees] are kept as creases when "
-                  "refining; 30 lets the remesher cross the facets of tessellated curved "
-                  "surfaces (fewer, better-shaped solver faces)")
-      ->capture_default_str();
+  add_solver_mesh_options(*cmd, options->max_edge, options->sharp_angle);
   cmd->add_option("-o,--output", options->output,
                   "Thickness on the input mesh: .vtp (ParaView), .ply (vertex colours), .csv");
   cmd->add_option("--solver-output", options->solver_output,

@@ -1,0 +1,24 @@
+#pragma once
+// The command-line options that shape the solver mesh, shared by every command that solves
+// (thickness, features), so their names, units and help texts cannot drift apart.
+
+#include <CLI/CLI.hpp>
+#include <optional>
+
+namespace bemshape::apps {
+
+/// Registers --max-edge (longest element edge [model units]; empty = the default rule
+/// 1.5·a·h0) and --sharp-angle (crease angle of the remesher [degrees]).
+inline void add_solver_mesh_options(CLI::App& command, std::optional<double>& max_edge,
+                                    double& sharp_angle) {
+  command.add_option("--max-edge", max_edge,
+                     "Longest element edge of the solver mesh, in file units (default 1.5*a*h0)");
+  command
+      .add_option("--sharp-angle", sharp_angle,
+                  "Edges with a dihedral angle above this [degrees] are kept as creases when "
+                  "refining; 30 lets the remesher cross the facets of tessellated curved "
+                  "surfaces (fewer, better-shaped solver faces)")
+      ->capture_default_str();
+}
+
+}  // namespace bemshape::apps
