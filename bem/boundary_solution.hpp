@@ -6,6 +6,7 @@
 //
 // The exterior normal derivative follows from the jump: q_out = q − n_i/ã.
 
+#include <cstdint>
 #include <string>
 
 #include <Eigen/Core>
@@ -22,6 +23,8 @@ struct SolveReport {
   double residual = 0.0;          ///< max over right-hand sides of ‖A x − b‖ / ‖b‖
   double assembly_seconds = 0.0;  ///< wall time of the operator assembly
   double solve_seconds = 0.0;     ///< wall time of the factorisation and solves
+  std::uint64_t operator_bytes = 0;  ///< memory held by the assembled operators [bytes]
+  double compression = 0.0;  ///< stored / dense entries of the compressed part (0: not compressed)
 };
 
 struct BoundarySolution {

@@ -12,6 +12,10 @@
 namespace bemshape::bem {
 namespace {
 
+/// √(a² + b²) without std::hypot's overflow-safe scaling (the arguments are lengths of a
+/// panel's geometry, far from overflow, and std::hypot cost 11 % of an assembly).
+inline double length2d(double a, double b) { return std::sqrt(a * a + b * b); }
+
 using Vec2 = Eigen::Vector2d;
 
 /// Gauss–Legendre points per composite piece. The integrands in v (angle) and u (radius) are
@@ -154,7 +158,7 @@ PanelIntegrals polar_panel_integrals(const Kernel& kernel, const Panel& panel,
       if (E.p > tol) theta += E.sigma * (std::atan(E.t2 / E.p) - std::atan(E.t1 / E.p));
   }
   double rho_max = 0.0;
-  for (const Vec2& Pk : P) rho_max = std::max(rho_max, std::hypot(Pk.norm(), d));
+  for (const Vec2& Pk : P) rho_max = std::max(rho_max, length2d(Pk.norm(), d));
   const bool split = yukawa && kappa * (rho_max - c) > split_exponent;
   const double exp_c = yukawa ? std::exp(-kappa * c) : 1.0;
   const double d_over_c = d == 0.0 ? 0.0 : d / c;
@@ -181,7 +185,7 @@ PanelIntegrals polar_panel_integrals(const Kernel& kernel, const Panel& panel,
     auto visit = [&](double v, double w) {
       const double ch = std::cosh(v);
       const double R = p * ch;
-      const double rho = std::hypot(R, d);
+      const double rho = length2d(R, d);
       const double dtheta = E.sigma * w / ch;
       // δ = ρ' − c without cancellation (ρ'² − c² = R² − q²).
       const double delta = (R * R - q2) / (rho + c);
@@ -217,7 +221,7 @@ PanelIntegrals polar_panel_integrals(const Kernel& kernel, const Panel& panel,
         return max_piece_width;
       } else {
         const double ch = std::cosh(vs);
-        const double rho_s = std::hypot(p * ch, d);
+        const double rho_s = length2d(p * ch, d);
         const double a1 = kappa * p * p * std::abs(std::sinh(vs)) * ch / rho_s;
         const double a2 = kappa * p * p * std::cosh(2.0 * vs) / rho_s;
         return 1.0 / (a1 + std::sqrt(a2));
@@ -226,7 +230,7 @@ PanelIntegrals polar_panel_integrals(const Kernel& kernel, const Panel& panel,
     auto negligible = [&](double vs) {
       if (!split) return false;
       const double R = p * std::cosh(vs);
-      const double delta = (R * R - q2) / (std::hypot(R, d) + c);
+      const double delta = (R * R - q2) / (length2d(R, d) + c);
       return kappa * delta > negligible_exponent;
     };
     const double v1 = std::asinh(E.t1 / p), v2 = std::asinh(E.t2 / p);

@@ -1,0 +1,44 @@
+#pragma once
+// Adaptive cross approximation with partial pivoting (Bebendorf 2000) of an m×n block
+// A ≈ U·Vᵀ (U: m×k, V: n×k) from k of its rows and columns, followed by a QR/SVD
+// recompression that makes the rank minimal for the tolerance.
+//
+// Step k: the residual row R(i_k, :) = A(i_k, :) − Σ_l U(i_k, l) V(:, l)ᵀ; column pivot j_k
+// = argmax |R(i_k, j)|; v_k = R(i_k, :)/R(i_k, j_k); u_k = A(:, j_k) − Σ_l V(j_k, l) U(:, l);
+// next row pivot i_{k+1} = argmax over unused rows of |u_k(i)|. Stops when
+//   ‖u_k‖·‖v_k‖ ≤ ε·‖U Vᵀ‖_F,
+// the usual estimate of the relative Frobenius error ‖A − U Vᵀ‖_F/‖A‖_F (exact for
+// asymptotically smooth kernels on admissible blocks, where the singular values decay
+// geometrically). Recompression: U = Q_u R_u, V = Q_v R_v, R_u R_vᵀ = W Σ Zᵀ, keep the
+// smallest r with (Σ_{i>r} σ_i²)^{1/2} ≤ ε·‖Σ‖.
+
+#include <functional>
+#include <optional>
+
+#include <Eigen/Core>
+
+namespace bemshape::bem {
+
+/// A ≈ U·Vᵀ.
+struct LowRankBlock {
+  Eigen::MatrixXd U;  ///< m×k
+  Eigen::MatrixXd V;  ///< n×k
+  Eigen::Index rank() const { return U.cols(); }
+};
+
+/// Writes row i (length n) / column j (length m) of A.
+using RowGenerator = std::function<void(Eigen::Index i, Eigen::Ref<Eigen::VectorXd> row)>;
+using ColumnGenerator = std::function<void(Eigen::Index j, Eigen::Ref<Eigen::VectorXd> column)>;
+
+/// Partial-pivot ACA of the m×n block with relative tolerance `epsilon`, recompressed.
+/// Returns nothing if the rank reaches `max_rank` before converging (the caller then stores
+/// the block densely: a low-rank form would be no smaller).
+std::optional<LowRankBlock> adaptive_cross_approximation(Eigen::Index m, Eigen::Index n,
+                                                         const RowGenerator& row,
+                                                         const ColumnGenerator& column,
+                                                         double epsilon, Eigen::Index max_rank);
+
+/// The smallest-rank U'·V'ᵀ within relative Frobenius distance `epsilon` of U·Vᵀ.
+LowRankBlock recompress(const LowRankBlock& block, double epsilon);
+
+}  // namespace bemshape::bem

@@ -1,0 +1,34 @@
+#pragma once
+// The block partition of an N×N operator over a cluster tree (bem/hierarchical/
+// cluster_tree.hpp): the leaves of the block tree built from (root, root) by splitting both
+// clusters until a pair is admissible or a cluster is a leaf.
+//
+// Admissibility (the standard condition for asymptotically smooth kernels):
+//   min(diam τ, diam σ) ≤ η · dist(τ, σ)
+// with diam and dist of the clusters' bounding boxes. An admissible block is approximated by
+// a low-rank product (bem/hierarchical/adaptive_cross_approximation.hpp); the others are
+// stored densely.
+
+#include <vector>
+
+#include "bem/hierarchical/cluster_tree.hpp"
+
+namespace bemshape::bem {
+
+struct BlockIndex {
+  int rows = 0;  ///< cluster index of τ (test panels)
+  int cols = 0;  ///< cluster index of σ (trial panels)
+};
+
+struct BlockPartition {
+  std::vector<BlockIndex> admissible;  ///< far-field blocks, low rank
+  std::vector<BlockIndex> dense;       ///< near-field blocks
+};
+
+/// Default η: the usual choice for ACA on Laplace layer potentials (ranks stay small, the
+/// near field stays a few leaf blocks per row).
+inline constexpr double kDefaultAdmissibility = 1.0;
+
+BlockPartition partition_blocks(const ClusterTree& tree, double eta = kDefaultAdmissibility);
+
+}  // namespace bemshape::bem

@@ -1,0 +1,55 @@
+#pragma once
+// Block-Jacobi preconditioner of the transmission system over clusters: for each cluster C
+// of at most `block_size` panels (the largest such clusters of the tree, which tile all
+// panels), the system restricted to the unknowns (φ_C, q_C),
+//
+//   [ −½M_C − K0[C,C]    V0[C,C] ]
+//   [  ½M_C − Kκ[C,C]    Vκ[C,C] ]
+//
+// is factorised (partial-pivot LU) and M⁻¹ applies the inverses block by block. The
+// restriction captures every interaction closer than about the cluster size, where the
+// first-kind operators V0, Vκ are dominated by their singular, mesh-scale part; the Krylov
+// solver is left with the smooth far interactions. Memory 32·N·block_size bytes.
+
+#include <utility>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/LU>
+
+#include "bem/hierarchical/cluster_tree.hpp"
+#include "bem/hierarchical/hierarchical_matrix.hpp"
+#include "bem/hierarchical/yukawa_near_field.hpp"
+
+namespace bemshape::bem {
+
+class ClusterBlockPreconditioner {
+ public:
+  /// Default cluster size: measured on spheres and plates (docs/benchmarks.md), iteration
+  /// counts fall slowly beyond it while the factorisations grow as the cube.
+  static constexpr Eigen::Index kDefaultBlockSize = 256;
+
+  /// `laplace`: the H-matrix of [−K0 | V0]; `yukawa`: [−Kκ | Vκ] (N × 2N); `half_mass`:
+  /// ½|T| per panel; all in tree order.
+  ClusterBlockPreconditioner(const ClusterTree& tree, const HierarchicalMatrix& laplace,
+                             const SparseRowMatrix& yukawa, const Eigen::VectorXd& half_mass,
+                             Eigen::Index block_size = kDefaultBlockSize);
+
+  /// z = M⁻¹ r for r = (r_φ, r_q), 2N in tree order.
+  void apply(const Eigen::VectorXd& r, Eigen::VectorXd& z) const;
+
+  /// Bytes held by the factorisations.
+  std::uint64_t bytes() const;
+
+  /// Bytes the preconditioner of N panels will hold at most.
+  static std::uint64_t bytes_for(Eigen::Index panels, Eigen::Index block_size) {
+    return 32ull * std::uint64_t(panels) * std::uint64_t(block_size);
+  }
+
+ private:
+  Eigen::Index n_ = 0;
+  std::vector<std::pair<Eigen::Index, Eigen::Index>> ranges_;
+  std::vector<Eigen::PartialPivLU<Eigen::MatrixXd>> factors_;
+};
+
+}  // namespace bemshape::bem

@@ -1,0 +1,159 @@
+#include "bem/hierarchical/hierarchical_matrix.hpp"
+
+#include <algorithm>
+#include <atomic>
+
+#include <omp.h>
+
+namespace bemshape::bem {
+
+HierarchicalMatrix::HierarchicalMatrix(const ClusterTree& tree,
+                                       const OperatorBlockGenerator& generator,
+                                       const HierarchicalMatrixOptions& options,
+                                       const ProgressCallback& progress)
+    : rows_(tree.root().size()), densities_(generator.densities()) {
+  const BlockPartition partition = partition_blocks(tree, options.eta);
+  const int g = densities_;
+  blocks_.reserve(partition.admissible.size() + partition.dense.size());
+  for (const auto* list : {&partition.dense, &partition.admissible})
+    for (const BlockIndex& b : *list) {
+      const Cluster& t = tree.cluster(b.rows);
+      const Cluster& s = tree.cluster(b.cols);
+      Block block;
+      block.row_begin = t.begin;
+      block.row_end = t.end;
+      block.col_begin = s.begin;
+      block.col_end = s.end;
+      block.is_low_rank = list == &partition.admissible;
+      blocks_.push_back(std::move(block));
+    }
+  // Large blocks first, so the dynamic schedule ends with small ones (load balance).
+  std::stable_sort(blocks_.begin(), blocks_.end(), [](const Block& x, const Block& y) {
+    return (x.row_end - x.row_begin) * (x.col_end - x.col_begin) >
+           (y.row_end - y.row_begin) * (y.col_end - y.col_begin);
+  });
+
+  std::atomic<std::size_t> done{0};
+  const std::size_t total = blocks_.size();
+#pragma omp parallel for schedule(dynamic, 1)
+  for (std::size_t k = 0; k < total; ++k) {
+    Block& b = blocks_[k];
+    const Eigen::Index m = b.row_end - b.row_begin, n = b.col_end - b.col_begin;
+    bool stored = false;
+    if (b.is_low_rank) {
+      // ACA on the m × g·n block; a rank at which U and V hold as many entries as the block
+      // itself gains nothing, so the block is then computed densely.
+      const Eigen::Index max_rank = std::max<Eigen::Index>(1, (m * g * n) / (m + g * n));
+      Eigen::MatrixXd column_pair(m, g);
+      Eigen::MatrixXd row_block(1, g * n);
+      auto aca = adaptive_cross_approximation(
+          m, g * n,
+          [&](Eigen::Index i, Eigen::Ref<Eigen::VectorXd> row) {
+            generator.fill(b.row_begin + i, b.row_begin + i + 1, b.col_begin, b.col_end, row_block);
+            row = row_block.row(0).transpose();
+          },
+          [&](Eigen::Index j, Eigen::Ref<Eigen::VectorXd> column) {
+            const Eigen::Index c = j % n, d = j / n;
+            generator.fill(b.row_begin, b.row_end, b.col_begin + c, b.col_begin + c + 1,
+                           column_pair);
+            column = column_pair.col(d);
+          },
+          options.aca_tolerance, max_rank);
+      if (aca) {
+        b.low_rank = std::move(*aca);
+        stored = true;
+      } else {
+        b.is_low_rank = false;
+      }
+    }
+    if (!stored) {
+      b.dense.resize(m, g * n);
+      generator.fill(b.row_begin, b.row_end, b.col_begin, b.col_end, b.dense);
+    }
+    const std::size_t finished = ++done;
+    if (progress && finished % 256 == 0) {
+#pragma omp critical(bemshape_progress)
+      report_progress(progress, "assemble", double(finished) / double(total));
+    }
+  }
+  stats_.full_entries = std::uint64_t(rows_) * std::uint64_t(g) * std::uint64_t(rows_);
+  for (const Block& b : blocks_) {
+    if (b.is_low_rank) {
+      ++stats_.admissible_blocks;
+      stats_.low_rank_entries += std::uint64_t(b.low_rank.U.size() + b.low_rank.V.size());
+      stats_.max_rank = std::max(stats_.max_rank, b.low_rank.rank());
+    } else {
+      ++stats_.dense_blocks;
+      stats_.dense_entries += std::uint64_t(b.dense.size());
+    }
+  }
+}
+
+Eigen::VectorXd HierarchicalMatrix::gather(const Eigen::Ref<const Eigen::MatrixXd>& x,
+                                           const Block& b) const {
+  const Eigen::Index n = b.col_end - b.col_begin;
+  Eigen::VectorXd xs(densities_ * n);
+  for (int d = 0; d < densities_; ++d) xs.segment(d * n, n) = x.col(d).segment(b.col_begin, n);
+  return xs;
+}
+
+void HierarchicalMatrix::multiply_add(const Eigen::Ref<const Eigen::MatrixXd>& x,
+                                      Eigen::Ref<Eigen::VectorXd> y) const {
+  const int threads = omp_get_max_threads();
+  std::vector<Eigen::VectorXd> partial(static_cast<size_t>(threads));
+#pragma omp parallel num_threads(threads)
+  {
+    Eigen::VectorXd& mine = partial[static_cast<size_t>(omp_get_thread_num())];
+    mine = Eigen::VectorXd::Zero(rows_);
+#pragma omp for schedule(static, 1)
+    for (std::size_t k = 0; k < blocks_.size(); ++k) {
+      const Block& b = blocks_[k];
+      const Eigen::VectorXd xs = gather(x, b);
+      const Eigen::Index m = b.row_end - b.row_begin;
+      if (b.is_low_rank)
+        mine.segment(b.row_begin, m).noalias() += b.low_rank.U * (b.low_rank.V.transpose() * xs);
+      else
+        mine.segment(b.row_begin, m).noalias() += b.dense * xs;
+    }
+  }
+  for (const Eigen::VectorXd& p : partial) y += p;
+}
+
+std::vector<Eigen::MatrixXd> HierarchicalMatrix::diagonal_blocks(
+    const std::vector<std::pair<Eigen::Index, Eigen::Index>>& ranges) const {
+  // Which blocks meet which diagonal block: the ranges are sorted, so a binary search finds
+  // the first range a block's rows reach.
+  std::vector<std::vector<std::size_t>> meeting(ranges.size());
+  for (std::size_t k = 0; k < blocks_.size(); ++k) {
+    const Block& b = blocks_[k];
+    auto t = std::lower_bound(ranges.begin(), ranges.end(), b.row_begin,
+                              [](const auto& range, Eigen::Index row) { return range.second <= row; });
+    for (; t != ranges.end() && t->first < b.row_end; ++t)
+      if (b.col_begin < t->second && t->first < b.col_end)
+        meeting[static_cast<std::size_t>(t - ranges.begin())].push_back(k);
+  }
+  std::vector<Eigen::MatrixXd> out(ranges.size());
+#pragma omp parallel for schedule(dynamic, 4)
+  for (std::size_t t = 0; t < ranges.size(); ++t) {
+    const auto [begin, end] = ranges[t];
+    const Eigen::Index size = end - begin;
+    out[t] = Eigen::MatrixXd::Zero(size, densities_ * size);
+    for (const std::size_t k : meeting[t]) {
+      const Block& b = blocks_[k];
+      const Eigen::Index r0 = std::max(begin, b.row_begin), r1 = std::min(end, b.row_end);
+      const Eigen::Index c0 = std::max(begin, b.col_begin), c1 = std::min(end, b.col_end);
+      const Eigen::Index n = b.col_end - b.col_begin;
+      for (int d = 0; d < densities_; ++d) {
+        auto target = out[t].block(r0 - begin, d * size + (c0 - begin), r1 - r0, c1 - c0);
+        if (b.is_low_rank)
+          target.noalias() += b.low_rank.U.middleRows(r0 - b.row_begin, r1 - r0) *
+                              b.low_rank.V.middleRows(d * n + (c0 - b.col_begin), c1 - c0).transpose();
+        else
+          target += b.dense.block(r0 - b.row_begin, d * n + (c0 - b.col_begin), r1 - r0, c1 - c0);
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace bemshape::bem

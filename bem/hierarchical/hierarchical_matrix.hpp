@@ -1,0 +1,94 @@
+#pragma once
+// Hierarchical matrix (H-matrix) of a boundary operator A acting on g densities on the same
+// panels, A: (x_1, …, x_g) ↦ Σ_d A_d x_d (N test panels × g·N unknowns), over a block
+// partition of a cluster tree (bem/hierarchical/block_partition.hpp): admissible blocks are
+// low-rank products from adaptive cross approximation with relative tolerance ε
+// (`aca_tolerance`), the others are dense. All indices are tree positions
+// (ClusterTree::permutation maps them to mesh faces).
+//
+// The blocks are computed independently (in parallel) from an OperatorBlockGenerator — the
+// same Galerkin entries as the dense path — so each block, and hence the whole matrix, is the
+// same whatever the number of threads. The product sums per-thread partial results in thread
+// order with a static schedule: bit-identical for a given thread count.
+
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "bem/hierarchical/adaptive_cross_approximation.hpp"
+#include "bem/hierarchical/block_partition.hpp"
+#include "bem/hierarchical/cluster_tree.hpp"
+#include "core/progress.hpp"
+
+namespace bemshape::bem {
+
+/// Entries of the operator, in tree order: out(r, d·|σ| + c) = A_d(τ_begin + r, σ_begin + c)
+/// for the rows τ = [row_begin, row_end) and the columns σ = [col_begin, col_end); `out` is
+/// |τ| × g·|σ|.
+class OperatorBlockGenerator {
+ public:
+  virtual ~OperatorBlockGenerator() = default;
+  virtual int densities() const = 0;
+  virtual void fill(Eigen::Index row_begin, Eigen::Index row_end, Eigen::Index col_begin,
+                    Eigen::Index col_end, Eigen::Ref<Eigen::MatrixXd> out) const = 0;
+};
+
+struct HierarchicalMatrixOptions {
+  /// ε of the cross approximation (relative Frobenius error per block). A couple of digits
+  /// below the Krylov tolerance, so the compression does not limit the solve.
+  double aca_tolerance = 1e-8;
+  /// η of the admissibility condition min(diam τ, diam σ) ≤ η·dist(τ, σ).
+  double eta = kDefaultAdmissibility;
+};
+
+/// Storage statistics.
+struct HierarchicalMatrixStats {
+  std::uint64_t dense_entries = 0;     ///< entries of the dense (near-field) blocks
+  std::uint64_t low_rank_entries = 0;  ///< entries of the U and V factors
+  std::uint64_t full_entries = 0;      ///< N·g·N, what a dense matrix would hold
+  Eigen::Index max_rank = 0;
+  std::size_t admissible_blocks = 0, dense_blocks = 0;
+  std::uint64_t bytes() const { return 8 * (dense_entries + low_rank_entries); }
+  /// Stored entries over the dense matrix's entries.
+  double compression() const {
+    return full_entries ? double(dense_entries + low_rank_entries) / double(full_entries) : 0.0;
+  }
+};
+
+class HierarchicalMatrix {
+ public:
+  HierarchicalMatrix(const ClusterTree& tree, const OperatorBlockGenerator& generator,
+                     const HierarchicalMatrixOptions& options = {},
+                     const ProgressCallback& progress = {});
+
+  Eigen::Index rows() const { return rows_; }
+  int densities() const { return densities_; }
+  const HierarchicalMatrixStats& stats() const { return stats_; }
+
+  /// y += A x with x: N×g (column d = density d), y: N, both in tree order.
+  void multiply_add(const Eigen::Ref<const Eigen::MatrixXd>& x, Eigen::Ref<Eigen::VectorXd> y) const;
+
+  /// The diagonal blocks A_d(C, C) of the index ranges C = [begin, end) in `ranges` (sorted,
+  /// disjoint), low-rank blocks expanded: result[t](r, d·|C| + c) = A_d(begin + r, begin + c).
+  /// What a block preconditioner needs.
+  std::vector<Eigen::MatrixXd> diagonal_blocks(
+      const std::vector<std::pair<Eigen::Index, Eigen::Index>>& ranges) const;
+
+ private:
+  struct Block {
+    Eigen::Index row_begin = 0, row_end = 0, col_begin = 0, col_end = 0;
+    Eigen::MatrixXd dense;  ///< |τ| × g|σ|, empty for a low-rank block
+    LowRankBlock low_rank;  ///< U: |τ|×k, V: g|σ|×k
+    bool is_low_rank = false;
+  };
+  Eigen::VectorXd gather(const Eigen::Ref<const Eigen::MatrixXd>& x, const Block& b) const;
+
+  Eigen::Index rows_ = 0;
+  int densities_ = 1;
+  std::vector<Block> blocks_;
+  HierarchicalMatrixStats stats_;
+};
+
+}  // namespace bemshape::bem

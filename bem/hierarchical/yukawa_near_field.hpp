@@ -1,0 +1,32 @@
+#pragma once
+// The exterior (Yukawa) operators as one sparse matrix. Gκ = e^{−κr}/(4πr) decays
+// exponentially, so a Galerkin entry between panels whose gap exceeds
+// g* = −ln(YukawaAttenuation::negligible)/κ ≈ 23/κ is below 1e−10 of an unattenuated
+// entry and is zero in the dense path too (bem/galerkin_operators.hpp): storing only the
+// rest loses nothing the dense path keeps. A panel interacts with the panels within about
+// g* + its size, O(1) of them per row whatever N, so the matrix has O(N) entries.
+//
+// Layout, in cluster-tree order (bem/hierarchical/cluster_tree.hpp): N × 2N,
+//   Y(i, j) = −Kκ[i, j],   Y(i, N + j) = Vκ[i, j],
+// i.e. the exterior identity's operator on (φ, q) without the ½M term.
+
+#include <Eigen/SparseCore>
+
+#include "bem/hierarchical/cluster_tree.hpp"
+#include "bem/panel.hpp"
+#include "core/progress.hpp"
+
+namespace bemshape::bem {
+
+using SparseRowMatrix = Eigen::SparseMatrix<double, Eigen::RowMajor, Eigen::Index>;
+
+/// The gap beyond which Yukawa entries are dropped, g* = −ln(negligible)/κ [model units].
+double yukawa_cutoff_gap(double kappa);
+
+/// Assembles Y for the panels in tree order (parallel over rows; each row is computed the
+/// same way whatever the thread count).
+SparseRowMatrix assemble_yukawa_near_field(const std::vector<Panel>& panels,
+                                           const ClusterTree& tree, double kappa,
+                                           const ProgressCallback& progress = {});
+
+}  // namespace bemshape::bem

@@ -1,0 +1,58 @@
+#pragma once
+// Fast solver of the shape-feature transmission problem: the same P0 Galerkin system as the
+// dense reference (bem/dense_transmission_solver.hpp),
+//
+//   [ −½M − K0    V0 ] [φ]   [ 0    ]
+//   [  ½M − Kκ    Vκ ] [q] = [ Vκ g ],   g = n_i/ã,
+//
+// with the Laplace block row [−K0 | V0] as a hierarchical matrix compressed by adaptive
+// cross approximation (bem/hierarchical/hierarchical_matrix.hpp), the Yukawa block row as a
+// sparse near-field matrix (bem/hierarchical/yukawa_near_field.hpp; the exponential decay
+// makes it exactly as sparse as the dense path's own dropping rule), and restarted GMRES
+// (bem/hierarchical/gmres.hpp) preconditioned by cluster blocks
+// (bem/hierarchical/cluster_block_preconditioner.hpp). Storage and work are O(N log N).
+// docs/benchmarks.md holds the measured times, memory and iteration counts.
+
+#include <cstdint>
+
+#include "bem/boundary_solution.hpp"
+#include "bem/hierarchical/block_partition.hpp"
+#include "bem/hierarchical/cluster_block_preconditioner.hpp"
+#include "bem/hierarchical/cluster_tree.hpp"
+#include "core/progress.hpp"
+#include "geometry/surface_mesh.hpp"
+
+namespace bemshape::bem {
+
+struct HMatrixSolverOptions {
+  /// Relative residual ‖b − A x‖/‖b‖ GMRES must reach (`--tolerance`).
+  double tolerance = 1e-6;
+  /// ε of the cross approximation: two digits below the GMRES tolerance, so compression
+  /// errors stay below what the solve leaves.
+  double aca_tolerance = 1e-8;
+  /// η of the admissibility condition.
+  double eta = kDefaultAdmissibility;
+  /// Panels per leaf of the cluster tree.
+  Eigen::Index leaf_size = ClusterTree::kDefaultLeafSize;
+  /// Panels per preconditioner block.
+  Eigen::Index preconditioner_block = ClusterBlockPreconditioner::kDefaultBlockSize;
+  int restart = 60;
+  int max_iterations = 600;
+  /// Upper bound on the memory the solver may use [bytes]; 0 = what the machine has.
+  std::uint64_t max_memory_bytes = 0;
+};
+
+/// Bytes the fast path is expected to hold for `faces` faces (the guard's estimate: near
+/// field, low-rank factors at a typical rank, preconditioner, Krylov basis).
+std::uint64_t hmatrix_solver_memory_estimate(Eigen::Index faces, const HMatrixSolverOptions& options);
+
+/// Solves for s_1, s_2, s_3 on a closed, outward-oriented mesh. Throws ResourceError if the
+/// estimate does not fit and NumericalError if GMRES does not reach the tolerance or the
+/// solution is not finite. The report's `iterations` is the largest count of the three
+/// directions.
+BoundarySolution solve_transmission_hmatrix(const geometry::SurfaceMesh& mesh,
+                                            const TransmissionParameters& parameters,
+                                            const HMatrixSolverOptions& options = {},
+                                            const ProgressCallback& progress = {});
+
+}  // namespace bemshape::bem

@@ -1,0 +1,185 @@
+// Fast-path benchmark (docs/benchmarks.md): builds a sphere, a plate or a thin-walled box of
+// about the requested number of faces at the default element size (longest edge 1.5·a·h0),
+// solves with the dense and/or the hierarchical-matrix path and prints one JSON line per run:
+//
+//   bench_fast_path sphere|plate|box FACES [dense|hmatrix|both] [--tolerance T] [--aca E]
+//                   [--leaf L] [--block B]
+//
+// Fields: shape, faces, solver, times (mesh, assemble, solve, features; seconds), iterations,
+// residual, peak_rss_mb (whole process), operator_mb, compression (H-matrix stored/dense
+// entries of the Laplace part), error (relative error of the thickness against the closed
+// form: f_h at the ball's centre; paper thickness h_f = h0(1/f_h − a) of the faces in the
+// middle of a wall for the plate and the box) and, with `both`, the largest differences
+// between the paths relative to the largest value (phi, q, thickness).
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+
+#include "bem/dense_transmission_solver.hpp"
+#include "bem/hmatrix_transmission_solver.hpp"
+#include "bem/potential_evaluation.hpp"
+#include "bem/surface_gradient.hpp"
+#include "core/memory.hpp"
+#include "geometry/primitive_meshes.hpp"
+#include "tests/support/closed_forms.hpp"
+
+using namespace bemshape;
+namespace ref = bemshape::testing;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+constexpr double kA = 0.2;
+
+struct Problem {
+  geometry::SurfaceMesh mesh;
+  double h0 = 0.3;
+  /// Faces whose thickness is compared with `thickness` (walls far from edges).
+  std::vector<Eigen::Index> probe_faces;
+  double thickness = 0.0;  ///< exact h_f on the probe faces (plate, box)
+  double ball_radius = 0.0;
+};
+
+/// Sphere R = 0.5 with h0 chosen so the mesh's edge is the default rule's.
+Problem sphere(double faces) {
+  Problem p;
+  const int frequency = std::max(1, int(std::lround(std::sqrt(faces / 20.0))));
+  p.mesh = geometry::make_geodesic_sphere(0.5, frequency);
+  p.h0 = p.mesh.max_edge_length() / (1.5 * kA);
+  p.ball_radius = 0.5;
+  return p;
+}
+
+/// Square plate L × L × h0, h0 = 0.3, edge 0.09: faces ≈ 4L²/0.09² (two big faces).
+Problem plate(double faces) {
+  Problem p;
+  const double edge = 1.5 * kA * p.h0;
+  const double side = std::max(4.0 * p.h0, edge * std::sqrt(faces / 4.0));
+  p.mesh = geometry::make_box(Eigen::Vector3d(-side / 2, -side / 2, -p.h0 / 2),
+                              Eigen::Vector3d(side / 2, side / 2, p.h0 / 2), edge);
+  p.thickness = p.h0;
+  const Eigen::MatrixX3d& c = p.mesh.face_centroids();
+  for (Eigen::Index f = 0; f < c.rows(); ++f)
+    if (std::abs(c(f, 0)) < 1.0 * p.h0 && std::abs(c(f, 1)) < 1.0 * p.h0) p.probe_faces.push_back(f);
+  return p;
+}
+
+/// Hollow cube, outer side L, wall h0 = 0.3, edge 0.09: faces ≈ 2 · 6L²/(0.09²/2).
+Problem box(double faces) {
+  Problem p;
+  const double edge = 1.5 * kA * p.h0;
+  const double side = std::max(6.0 * p.h0, edge * std::sqrt(faces / 24.0));
+  const Eigen::Vector3d half = Eigen::Vector3d::Constant(side / 2);
+  const Eigen::Vector3d inner = half - Eigen::Vector3d::Constant(p.h0);
+  p.mesh = geometry::concatenated(
+      geometry::make_box(-half, half, edge),
+      geometry::with_flipped_orientation(geometry::make_box(-inner, inner, edge)));
+  p.thickness = p.h0;
+  const Eigen::MatrixX3d& c = p.mesh.face_centroids();
+  for (Eigen::Index f = 0; f < c.rows(); ++f)  // middle of the top wall, both sides
+    if (std::abs(c(f, 0)) < p.h0 && std::abs(c(f, 1)) < p.h0 && c(f, 2) > 0) p.probe_faces.push_back(f);
+  return p;
+}
+
+/// h_f per face from the surface gradient's trace.
+Eigen::VectorXd face_thickness(const geometry::SurfaceMesh& mesh, const bem::BoundarySolution& s,
+                               double h0) {
+  const auto g = bem::interior_surface_gradient(mesh, s);
+  Eigen::VectorXd h(mesh.num_faces());
+  for (Eigen::Index f = 0; f < h.size(); ++f) {
+    const double f_h = h0 * h0 * (g.face_gradient(f, 0) + g.face_gradient(f, 4) + g.face_gradient(f, 8));
+    h(f) = h0 * (1.0 / f_h - kA);
+  }
+  return h;
+}
+
+struct Run {
+  bem::BoundarySolution solution;
+  Eigen::VectorXd thickness;
+  double assemble = 0, solve = 0, features = 0, error = 0;
+};
+
+Run run(const Problem& p, const std::string& solver, const bem::HMatrixSolverOptions& options) {
+  const auto parameters = bem::TransmissionParameters::from_shape(p.h0, kA);
+  Run r;
+  r.solution = solver == "dense" ? bem::solve_transmission_dense(p.mesh, parameters)
+                                 : bem::solve_transmission_hmatrix(p.mesh, parameters, options);
+  r.assemble = r.solution.report.assembly_seconds;
+  r.solve = r.solution.report.solve_seconds;
+  const auto t0 = Clock::now();
+  r.thickness = face_thickness(p.mesh, r.solution, p.h0);
+  if (p.ball_radius > 0) {
+    const ref::PdeParameters pde{p.h0, kA};
+    const double exact = ref::inverse_thickness(pde, 3.0 * ref::ball_solution(pde, p.ball_radius).A);
+    const auto field = bem::evaluate_potential(p.mesh, r.solution, Eigen::MatrixX3d::Zero(1, 3));
+    const double f_h = p.h0 * p.h0 * (field.gradient(0, 0) + field.gradient(0, 4) + field.gradient(0, 8));
+    r.error = std::abs(f_h - exact) / exact;
+  } else {
+    for (const Eigen::Index f : p.probe_faces)
+      r.error = std::max(r.error, std::abs(r.thickness(f) - p.thickness) / p.thickness);
+  }
+  r.features = seconds(t0);
+  return r;
+}
+
+double relative_difference(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
+  return (a - b).cwiseAbs().maxCoeff() / a.cwiseAbs().maxCoeff();
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 3) {
+    std::fprintf(stderr, "usage: bench_fast_path sphere|plate|box FACES [dense|hmatrix|both] "
+                         "[--tolerance T] [--aca E] [--leaf L] [--block B]\n");
+    return 2;
+  }
+  const std::string shape = argv[1];
+  const double faces = std::atof(argv[2]);
+  std::string solver = "hmatrix";
+  bem::HMatrixSolverOptions options;
+  for (int i = 3; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "dense" || a == "hmatrix" || a == "both") solver = a;
+    else if (a == "--tolerance" && i + 1 < argc) options.tolerance = std::atof(argv[++i]);
+    else if (a == "--aca" && i + 1 < argc) options.aca_tolerance = std::atof(argv[++i]);
+    else if (a == "--leaf" && i + 1 < argc) options.leaf_size = std::atol(argv[++i]);
+    else if (a == "--block" && i + 1 < argc) options.preconditioner_block = std::atol(argv[++i]);
+    else {
+      std::fprintf(stderr, "bench_fast_path: unknown argument %s\n", a.c_str());
+      return 2;
+    }
+  }
+  const auto t0 = Clock::now();
+  const Problem p = shape == "sphere" ? sphere(faces) : shape == "plate" ? plate(faces) : box(faces);
+  const double mesh_seconds = seconds(t0);
+  const std::vector<std::string> solvers =
+      solver == "both" ? std::vector<std::string>{"dense", "hmatrix"} : std::vector<std::string>{solver};
+  std::vector<Run> runs;
+  for (const std::string& s : solvers) {
+    runs.push_back(run(p, s, options));
+    const Run& r = runs.back();
+    std::printf("{\"shape\": \"%s\", \"faces\": %ld, \"solver\": \"%s\", \"h0\": %.6g, "
+                "\"times\": {\"mesh\": %.3f, \"assemble\": %.3f, \"solve\": %.3f, \"features\": %.3f}, "
+                "\"iterations\": %d, \"residual\": %.3g, \"peak_rss_mb\": %.1f, \"operator_mb\": %.1f, "
+                "\"compression\": %.4f, \"error\": %.3e",
+                shape.c_str(), long(p.mesh.num_faces()), s.c_str(), p.h0, mesh_seconds, r.assemble,
+                r.solve, r.features, r.solution.report.iterations, r.solution.report.residual,
+                double(peak_resident_bytes()) / 1e6, double(r.solution.report.operator_bytes) / 1e6,
+                r.solution.report.compression, r.error);
+    if (runs.size() == 2)
+      std::printf(", \"difference\": {\"phi\": %.3e, \"q\": %.3e, \"thickness\": %.3e}",
+                  relative_difference(runs[0].solution.phi, runs[1].solution.phi),
+                  relative_difference(runs[0].solution.q, runs[1].solution.q),
+                  relative_difference(runs[0].thickness, runs[1].thickness));
+    std::printf("}\n");
+    std::fflush(stdout);
+  }
+  return 0;
+}
