@@ -24,12 +24,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-/// Default h0 in cells: κ·cell = 2·cell/(a·h0) = 0.5 at a = 0.2, the resolution at which the
-/// thickness error is about 1% (docs/validation.md).
-constexpr double kDefaultH0Cells = 20.0;
-/// κ·cell above which the exterior boundary layer is under-resolved (errors of several %).
-constexpr double kMaxResolvedKappaCell = 0.5;
-
 struct FemOptions {
   std::string input, output;
   double cell = 0.0, h0 = 0.0, a = 0.2, pixel = 1.0;

@@ -9,6 +9,12 @@
 
 namespace bemshape::apps {
 
+/// Default h0 in cells: κ·cell = 2·cell/(a·h0) = 0.5 at a = 0.2, the resolution at which the
+/// thickness error is about 1% (docs/validation.md). Shared with `bemshape compare`.
+inline constexpr double kDefaultH0Cells = 20.0;
+/// κ·cell above which the exterior boundary layer is under-resolved (errors of several %).
+inline constexpr double kMaxResolvedKappaCell = 0.5;
+
 /// Adds the `fem` subcommand to `app`; stores its exit code in `exit_code` when it runs.
 void register_fem_command(CLI::App& app, int& exit_code);
 

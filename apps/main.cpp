@@ -9,6 +9,7 @@
 #include <string>
 
 #include "apps/check_command.hpp"
+#include "apps/compare_command.hpp"
 #include "apps/exit_codes.hpp"
 #include "apps/features_command.hpp"
 #include "apps/fem_command.hpp"
@@ -38,6 +39,7 @@ int main(int argc, char** argv) {
   apps::register_thickness_command(app, exit_code);
   apps::register_features_command(app, exit_code);
   apps::register_fem_command(app, exit_code);
+  apps::register_compare_command(app, exit_code);
 
   try {
     app.parse(argc, argv);

@@ -2,6 +2,7 @@
 // as binary STL, for reproducing a test's bemshape run by hand:
 //
 //   make_test_mesh sphere RADIUS MAX_EDGE OUT.stl
+//   make_test_mesh shell INNER_RADIUS OUTER_RADIUS MAX_EDGE OUT.stl   (cavity inside)
 //   make_test_mesh box LX LY LZ MAX_EDGE OUT.stl        (centred at the origin)
 //   make_test_mesh cylinder RADIUS LENGTH MAX_EDGE OUT.stl
 #include <cstdlib>
@@ -25,12 +26,18 @@ int main(int argc, char** argv) {
     const Eigen::Vector3d half(arg(2) / 2, arg(3) / 2, arg(4) / 2);
     mesh = geometry::make_box(-half, half, arg(5));
     out = argv[6];
+  } else if (kind == "shell" && argc == 6) {
+    mesh = geometry::make_spherical_shell(arg(2), arg(3),
+                                          geometry::geodesic_frequency_for_edge(arg(2), arg(4)),
+                                          geometry::geodesic_frequency_for_edge(arg(3), arg(4)));
+    out = argv[5];
   } else if (kind == "cylinder" && argc == 6) {
     mesh = geometry::make_cylinder(arg(2), arg(3), arg(4));
     out = argv[5];
   } else {
-    std::cerr << "usage: make_test_mesh sphere R EDGE OUT | box LX LY LZ EDGE OUT | cylinder R L "
-                 "EDGE OUT\n";
+    std::cerr
+        << "usage: make_test_mesh sphere R EDGE OUT | shell R1 R2 EDGE OUT | box LX LY LZ EDGE "
+           "OUT | cylinder R L EDGE OUT\n";
     return 2;
   }
   output::write_binary_stl(out, mesh.vertices(), mesh.faces());
