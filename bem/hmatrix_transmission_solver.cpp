@@ -4,7 +4,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "bem/galerkin_operators.hpp"
+#include "bem/hierarchical/galerkin_block_generator.hpp"
 #include "bem/hierarchical/gmres.hpp"
 #include "bem/hierarchical/hierarchical_matrix.hpp"
 #include "bem/hierarchical/yukawa_near_field.hpp"
@@ -21,28 +21,6 @@ using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
-
-/// [−K0 | V0] in tree order: out(r, c) = −K0, out(r, |σ| + c) = V0.
-class LaplaceRowGenerator final : public OperatorBlockGenerator {
- public:
-  LaplaceRowGenerator(const std::vector<Panel>& panels, const ClusterTree& tree)
-      : laplace_(LaplaceKernel{}, panels), perm_(tree.permutation()) {}
-  int densities() const override { return 2; }
-  void fill(Eigen::Index row_begin, Eigen::Index row_end, Eigen::Index col_begin,
-            Eigen::Index col_end, Eigen::Ref<Eigen::MatrixXd> out) const override {
-    const Eigen::Index n = col_end - col_begin;
-    for (Eigen::Index c = 0; c < n; ++c)
-      for (Eigen::Index r = 0; r < row_end - row_begin; ++r) {
-        const auto e = laplace_.entry(perm_[size_t(row_begin + r)], perm_[size_t(col_begin + c)]);
-        out(r, c) = -e.double_layer;
-        out(r, n + c) = e.single_layer;
-      }
-  }
-
- private:
-  GalerkinOperators<LaplaceKernel> laplace_;
-  const std::vector<Eigen::Index>& perm_;
-};
 
 /// Typical rank of an admissible Laplace block at ε = 1e−8 (measured: 6–20), used only by
 /// the memory estimate.
@@ -81,7 +59,7 @@ BoundarySolution solve_transmission_hmatrix(const geometry::SurfaceMesh& mesh,
   const auto& perm = tree.permutation();
 
   report_progress(progress, "assemble", 0.0);
-  const LaplaceRowGenerator generator(panels, tree);
+  const GalerkinBlockGenerator<LaplaceKernel> generator(LaplaceKernel{}, panels, tree);
   const HierarchicalMatrix laplace(tree, generator, {options.aca_tolerance, options.eta},
                                    progress);
   report_progress(progress, "assemble exterior", 0.0);

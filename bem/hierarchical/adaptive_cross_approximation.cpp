@@ -1,5 +1,6 @@
 #include "bem/hierarchical/adaptive_cross_approximation.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -48,7 +49,9 @@ std::optional<LowRankBlock> adaptive_cross_approximation(Eigen::Index m, Eigen::
     if (!(pivot > kZeroPivot * std::sqrt(norm2)) || pivot == 0.0) {
       // This row is (numerically) represented already; try others before concluding.
       if (++zero_rows > kZeroRowRetries) break;
-      const Eigen::Index next = next_unused(pivot_row + 1);
+      // Zero rows come in runs (coplanar panels are neighbours in the tree): jump ahead.
+      const Eigen::Index next =
+          next_unused(pivot_row + std::max<Eigen::Index>(1, m / (kZeroRowRetries + 1)));
       if (next < 0) break;
       pivot_row = next;
       continue;

@@ -5,6 +5,13 @@
 #include <Eigen/Dense>
 
 namespace bemshape::bem {
+namespace {
+
+/// An Arnoldi vector shorter than this fraction of A·z before orthogonalisation is a
+/// breakdown: A·z lies in the Krylov space already (to rounding).
+constexpr double kBreakdown = 1e-14;
+
+}  // namespace
 
 GmresResult gmres(const LinearOperator& a, const LinearOperator& preconditioner,
                   const Eigen::VectorXd& b, Eigen::VectorXd& x, const GmresOptions& options,
@@ -42,18 +49,20 @@ GmresResult gmres(const LinearOperator& a, const LinearOperator& preconditioner,
       apply_preconditioner(basis.col(k), z);
       a(z, w);
       ++result.iterations;
+      const double w_before = w.norm();
       for (int i = 0; i <= k; ++i) {
         h(i, k) = w.dot(basis.col(i));
         w -= h(i, k) * basis.col(i);
       }
-      h(k + 1, k) = w.norm();
-      if (h(k + 1, k) > 0.0) basis.col(k + 1) = w / h(k + 1, k);
+      const double w_norm = w.norm();
+      h(k + 1, k) = w_norm;
       for (int i = 0; i < k; ++i) {  // previous rotations
         const double t = cs(i) * h(i, k) + sn(i) * h(i + 1, k);
         h(i + 1, k) = -sn(i) * h(i, k) + cs(i) * h(i + 1, k);
         h(i, k) = t;
       }
-      const double rho = std::hypot(h(k, k), h(k + 1, k));
+      const double rho = std::sqrt(h(k, k) * h(k, k) + h(k + 1, k) * h(k + 1, k));
+      if (!(rho > kBreakdown * w_before)) break;  // A·z_k adds nothing: keep the first k steps
       cs(k) = h(k, k) / rho;
       sn(k) = h(k + 1, k) / rho;
       h(k, k) = rho;
@@ -62,12 +71,14 @@ GmresResult gmres(const LinearOperator& a, const LinearOperator& preconditioner,
       g(k) = cs(k) * g(k);
       const double estimate = std::abs(g(k + 1)) / norm_b;
       if (monitor) monitor(result.iterations, estimate);
-      if (estimate <= options.tolerance || h.col(k).isZero(0.0)) {
-        ++k;
+      if (estimate <= options.tolerance || !(w_norm > kBreakdown * w_before)) {
+        ++k;  // converged, or the Krylov space is invariant (the residual cannot shrink more)
         break;
       }
+      basis.col(k + 1) = w / w_norm;
     }
     // x += M⁻¹ V_k y with H_k y = g_k (upper triangular after the rotations).
+    if (k == 0) break;  // no usable direction
     const Eigen::VectorXd y =
         h.topLeftCorner(k, k).triangularView<Eigen::Upper>().solve(g.head(k));
     apply_preconditioner(basis.leftCols(k) * y, z);

@@ -1,0 +1,72 @@
+// bem/hmatrix_transmission_solver.hpp against the dense reference on the same mesh and
+// against the ball's closed form.
+#include <catch2/catch.hpp>
+#include <cmath>
+
+#include "bem/dense_transmission_solver.hpp"
+#include "bem/hmatrix_transmission_solver.hpp"
+#include "bem/potential_evaluation.hpp"
+#include "core/errors.hpp"
+#include "geometry/primitive_meshes.hpp"
+#include "tests/support/closed_forms.hpp"
+
+using namespace bemshape;
+namespace ref = bemshape::testing;
+
+namespace {
+const ref::PdeParameters kPaper{0.3, 0.2};
+const auto kParameters = bem::TransmissionParameters::from_shape(kPaper.h0, kPaper.a);
+
+double relative(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
+  return (a - b).cwiseAbs().maxCoeff() / b.cwiseAbs().maxCoeff();
+}
+}  // namespace
+
+TEST_CASE("H-matrix solver = dense solver on the ball and the closed form at its centre") {
+  const auto mesh = geometry::make_geodesic_sphere(0.5, 8);  // 1280 faces, the default rule
+  const auto dense = bem::solve_transmission_dense(mesh, kParameters);
+  bem::HMatrixSolverOptions options;
+  options.tolerance = 1e-9;
+  options.aca_tolerance = 1e-11;
+  const auto fast = bem::solve_transmission_hmatrix(mesh, kParameters, options);
+  CHECK(fast.report.method == "hmatrix-gmres");
+  CHECK(fast.report.residual <= 1e-9);
+  CHECK(fast.report.iterations > 0);
+  CHECK(fast.report.iterations < 60);
+  CAPTURE(relative(fast.phi, dense.phi), relative(fast.q, dense.q), fast.report.iterations);
+  CHECK(relative(fast.phi, dense.phi) < 1e-7);
+  CHECK(relative(fast.q, dense.q) < 1e-6);
+
+  // The default tolerances: within the discretisation error of the closed form.
+  const auto coarse = bem::solve_transmission_hmatrix(mesh, kParameters);
+  CHECK(coarse.report.residual <= 1e-6);
+  const auto field = bem::evaluate_potential(mesh, coarse, Eigen::MatrixX3d::Zero(1, 3));
+  const double f_h = kPaper.h0 * kPaper.h0 * (field.gradient(0, 0) + field.gradient(0, 4) + field.gradient(0, 8));
+  const double exact = ref::inverse_thickness(kPaper, 3.0 * ref::ball_solution(kPaper, 0.5).A);
+  CHECK(std::abs(f_h - exact) / exact < 2.5e-3);  // the dense path: 1.7e-3 (docs/validation.md)
+}
+
+TEST_CASE("H-matrix solver on a hollow box (flat walls, sharp edges, a cavity) = dense") {
+  const Eigen::Vector3d half(0.6, 0.5, 0.45), inner = half - Eigen::Vector3d::Constant(0.3);
+  const auto mesh = geometry::concatenated(
+      geometry::make_box(-half, half, 0.15),
+      geometry::with_flipped_orientation(geometry::make_box(-inner, inner, 0.15)));
+  const auto dense = bem::solve_transmission_dense(mesh, kParameters);
+  bem::HMatrixSolverOptions options;
+  options.tolerance = 1e-9;
+  options.aca_tolerance = 1e-11;
+  options.preconditioner_block = 64;
+  const auto fast = bem::solve_transmission_hmatrix(mesh, kParameters, options);
+  CAPTURE(mesh.num_faces(), relative(fast.phi, dense.phi), relative(fast.q, dense.q), fast.report.iterations);
+  CHECK(relative(fast.phi, dense.phi) < 1e-7);
+  CHECK(relative(fast.q, dense.q) < 1e-6);
+}
+
+TEST_CASE("H-matrix solver: GMRES that cannot reach its tolerance is a NumericalError") {
+  const auto mesh = geometry::make_geodesic_sphere(0.5, 4);
+  bem::HMatrixSolverOptions options;
+  options.tolerance = 1e-12;
+  options.max_iterations = 2;
+  options.preconditioner_block = 8;
+  CHECK_THROWS_AS(bem::solve_transmission_hmatrix(mesh, kParameters, options), NumericalError);
+}
