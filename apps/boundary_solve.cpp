@@ -7,6 +7,7 @@
 
 #include "apps/report_text.hpp"
 #include "bem/dense_transmission_solver.hpp"
+#include "bem/hmatrix_transmission_solver.hpp"
 #include "bem/transmission_parameters.hpp"
 #include "core/errors.hpp"
 #include "core/memory.hpp"
@@ -81,17 +82,32 @@ BoundarySolveRun prepare_and_solve(const BoundarySolveSetup& setup, StageTimes& 
     return geometry::refine_to_edge_length(run.input.mesh, run.max_edge, remeshing, progress);
   });
 
-  const std::uint64_t budget = dense_budget_bytes(setup.max_memory_bytes);
-  if (budget > 0 && bem::dense_solver_memory_bytes(run.solver_mesh.num_faces()) > budget)
-    throw_does_not_fit(setup, run, budget);
-  bem::DenseSolverOptions options;
-  options.max_memory_bytes = setup.max_memory_bytes;
+  const Eigen::Index faces = run.solver_mesh.num_faces();
+  const std::string& method = setup.solver.method;
+  if (method != "auto" && method != "dense" && method != "hmatrix")
+    throw InputError("--solver must be auto, dense or hmatrix, got '" + method + "'");
+  if (!(setup.solver.tolerance > 0.0 && setup.solver.tolerance < 1.0))
+    throw InputError("--tolerance must be in (0, 1), got " + number_text(setup.solver.tolerance, 3));
   report_progress(progress, "assemble", 0.0);
-  try {
-    run.solution = bem::solve_transmission_dense(run.solver_mesh, parameters, options, progress);
-  } catch (const ResourceError&) {
-    // The machine's free memory dropped between our check and the allocation.
-    throw_does_not_fit(setup, run, dense_budget_bytes(setup.max_memory_bytes));
+  if (method == "hmatrix" || (method == "auto" && faces > kAutoDenseFaces)) {
+    bem::HMatrixSolverOptions options;
+    options.tolerance = setup.solver.tolerance;
+    // ε two digits below the Krylov tolerance (bem/hmatrix_transmission_solver.hpp).
+    options.aca_tolerance = 1e-2 * setup.solver.tolerance;
+    options.max_memory_bytes = setup.max_memory_bytes;
+    run.solution = bem::solve_transmission_hmatrix(run.solver_mesh, parameters, options, progress);
+  } else {
+    const std::uint64_t budget = dense_budget_bytes(setup.max_memory_bytes);
+    if (budget > 0 && bem::dense_solver_memory_bytes(faces) > budget)
+      throw_does_not_fit(setup, run, budget);
+    bem::DenseSolverOptions options;
+    options.max_memory_bytes = setup.max_memory_bytes;
+    try {
+      run.solution = bem::solve_transmission_dense(run.solver_mesh, parameters, options, progress);
+    } catch (const ResourceError&) {
+      // The machine's free memory dropped between our check and the allocation.
+      throw_does_not_fit(setup, run, dense_budget_bytes(setup.max_memory_bytes));
+    }
   }
   times.add("assemble", run.solution.report.assembly_seconds);
   times.add("solve", run.solution.report.solve_seconds);

@@ -22,6 +22,20 @@
 
 namespace bemshape::apps {
 
+/// Which linear solver runs (--solver, --tolerance).
+struct SolverChoice {
+  /// "auto" (dense up to kAutoDenseFaces solver faces, the H-matrix path above), "dense" or
+  /// "hmatrix".
+  std::string method = "auto";
+  /// Relative residual the iterative (H-matrix) path must reach.
+  double tolerance = 1e-6;
+};
+
+/// The largest solver mesh "auto" gives to the dense path. Measured on the ball
+/// (bench/bench_fast_path, docs/benchmarks.md): the two paths take the same time near 1300
+/// faces; the dense path's exact solve is kept a little beyond.
+inline constexpr long kAutoDenseFaces = 2000;
+
 struct BoundarySolveSetup {
   std::string input;               ///< mesh file
   double h0 = 0.0;                 ///< characteristic length [model units]
@@ -31,6 +45,7 @@ struct BoundarySolveSetup {
   /// remesher (geometry::RemeshingOptions::sharp_angle_degrees).
   double sharp_angle_degrees = geometry::RemeshingOptions{}.sharp_angle_degrees;
   std::uint64_t max_memory_bytes = 0;  ///< --max-memory; 0 = what the machine has
+  SolverChoice solver;                 ///< --solver, --tolerance
   /// Called after reading, before refining and solving (e.g. to refuse an absurd request
   /// that depends on the part's size before the expensive stages). May be empty.
   std::function<void(const geometry::PreparedMesh&)> check_input;

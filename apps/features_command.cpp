@@ -37,6 +37,7 @@ namespace fs = std::filesystem;
 constexpr double kMaxPoints = 1.0e6;
 
 struct FeaturesOptions {
+  SolverChoice solver;  ///< --solver, --tolerance
   std::string input;
   std::string points_path;
   std::optional<double> grid_spacing;
@@ -151,6 +152,7 @@ void run_features(const FeaturesOptions& options, int& exit_code) {
   setup.a = options.a;
   setup.max_edge = options.max_edge;
   setup.sharp_angle_degrees = options.sharp_angle;
+  setup.solver = options.solver;
   setup.max_memory_bytes = static_cast<std::uint64_t>(options.max_memory_mb * 1e6);
   if (grid_mode)
     setup.check_input = [&options](const geometry::PreparedMesh& input) {
@@ -252,6 +254,7 @@ void register_features_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--a", options->a, "Dimensionless diffusion parameter a of the PDE")
       ->capture_default_str();
   add_solver_mesh_options(*cmd, options->max_edge, options->sharp_angle);
+  add_solver_choice_options(*cmd, options->solver);
   cmd->add_option("--skeleton-width", options->skeleton_width,
                   "Half-width of the skeleton band (default: grid spacing, or the element size)");
   cmd->add_option("--threads", options->threads, "Number of threads (default: all cores)");

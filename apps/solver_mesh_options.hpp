@@ -5,6 +5,8 @@
 #include <CLI/CLI.hpp>
 #include <optional>
 
+#include "apps/boundary_solve.hpp"
+
 namespace bemshape::apps {
 
 /// Registers --max-edge (longest element edge [model units]; empty = the default rule
@@ -18,6 +20,22 @@ inline void add_solver_mesh_options(CLI::App& command, std::optional<double>& ma
                   "Edges with a dihedral angle above this [degrees] are kept as creases when "
                   "refining; 30 lets the remesher cross the facets of tessellated curved "
                   "surfaces (fewer, better-shaped solver faces)")
+      ->capture_default_str();
+}
+
+/// Registers --solver (auto | dense | hmatrix) and --tolerance (GMRES relative residual).
+inline void add_solver_choice_options(CLI::App& command, SolverChoice& choice) {
+  command
+      .add_option("--solver", choice.method,
+                  "Linear solver: dense (LU, exact, O(N^2) memory), hmatrix (H-matrix + GMRES, "
+                  "for large meshes) or auto (dense up to " +
+                      std::to_string(kAutoDenseFaces) + " solver faces)")
+      ->check(CLI::IsMember({"auto", "dense", "hmatrix"}))
+      ->capture_default_str();
+  command
+      .add_option("--tolerance", choice.tolerance,
+                  "Relative residual the hmatrix solver's GMRES must reach")
+      ->check(CLI::Range(1e-14, 0.1))
       ->capture_default_str();
 }
 

@@ -34,6 +34,7 @@ namespace {
 namespace fs = std::filesystem;
 
 struct ThicknessOptions {
+  SolverChoice solver;  ///< --solver, --tolerance
   std::string input;
   std::optional<double> h0;
   double a = 0.2;
@@ -215,7 +216,9 @@ nlohmann::json report_json(const ThicknessOptions& options, double h0, const Bou
        {{"method", run.solution.report.method},
         {"unknowns", run.solution.report.unknowns},
         {"iterations", run.solution.report.iterations},
-        {"residual", run.solution.report.residual}}},
+        {"residual", run.solution.report.residual},
+        {"operator_mb", double(run.solution.report.operator_bytes) / 1e6},
+        {"compression", run.solution.report.compression}}},
       {"timing", timing},
       {"memory", {{"peak_mb", peak_mb}}}};
 }
@@ -313,6 +316,7 @@ void run_thickness(const ThicknessOptions& options, int& exit_code) {
   setup.a = options.a;
   setup.max_edge = options.max_edge;
   setup.sharp_angle_degrees = options.sharp_angle;
+  setup.solver = options.solver;
   setup.max_memory_bytes = static_cast<std::uint64_t>(options.max_memory_mb * 1e6);
   const BoundarySolveRun run = prepare_and_solve(setup, times, display.callback());
 
@@ -380,6 +384,7 @@ void register_thickness_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--min-thickness", options->min_thickness,
                   "Check: fail (exit 1) if any wall is thinner than this; lists the thin regions");
   add_solver_mesh_options(*cmd, options->max_edge, options->sharp_angle);
+  add_solver_choice_options(*cmd, options->solver);
   cmd->add_option("-o,--output", options->output,
                   "Thickness on the input mesh: .vtp (ParaView), .ply (vertex colours), .csv");
   cmd->add_option("--solver-output", options->solver_output,

@@ -381,6 +381,37 @@ TEST_CASE(
   CHECK(report["thickness"]["min"].get<double>() == minimum);  // same run, same numbers
 }
 
+TEST_CASE("solver hmatrix: the same thickness as --solver dense, GMRES reported in the JSON") {
+  const std::string mesh = ball_file(0.12, "solver_ball.stl");
+  const auto solve = [&](const std::string& solver) {
+    const std::string csv = scratch("solver_" + solver + ".csv");
+    const std::string json = scratch("solver_" + solver + ".json");
+    const Run r = run_bemshape("thickness '" + mesh + "' --h0 0.3 --max-edge 0.12 --solver " +
+                               solver + " --tolerance 1e-8 -o '" + csv + "' --report '" + json +
+                               "' --quiet");
+    CAPTURE(r.out, r.err);
+    REQUIRE(r.exit_code == 0);
+    return std::make_pair(parse_csv(slurp(csv)), read_json(json));
+  };
+  const auto [dense, dense_report] = solve("dense");
+  const auto [fast, fast_report] = solve("hmatrix");
+  CHECK(dense_report["solver"]["method"] == "dense-lu");
+  CHECK(fast_report["solver"]["method"] == "hmatrix-gmres");
+  CHECK(fast_report["solver"]["iterations"].get<int>() > 0);
+  CHECK(fast_report["solver"]["residual"].get<double>() <= 1e-8);
+  CHECK(fast_report["solver"]["operator_mb"].get<double>() > 0.0);
+  for (const char* column : {"h_p", "h_f"}) {
+    const Eigen::VectorXd a = dense.col(column), b = fast.col(column);
+    CHECK(((a - b).array().abs() / a.array()).maxCoeff() < 1e-5);
+  }
+  // Below kAutoDenseFaces "auto" is the dense path.
+  const Run r = run_bemshape("thickness '" + mesh + "' --h0 0.3 --max-edge 0.12 --quiet --report '" +
+                             scratch("solver_auto.json") + "'");
+  REQUIRE(r.exit_code == 0);
+  CHECK(read_json(scratch("solver_auto.json"))["solver"]["method"] == "dense-lu");
+  CHECK(run_bemshape("thickness '" + mesh + "' --h0 0.3 --solver fast").exit_code == 2);
+}
+
 TEST_CASE("usage errors are one line on stderr, exit 2, before any work and no file is left") {
   const std::string mesh = ball_file(0.12, "usage_ball.stl");
   Run r = run_bemshape("thickness '" + mesh + "'");
