@@ -9,13 +9,11 @@
 
 namespace bemshape::bem {
 
-double yukawa_cutoff_gap(double kappa) {
-  return -std::log(YukawaAttenuation::negligible) / kappa;
-}
+double yukawa_cutoff_gap(double kappa, double negligible) { return -std::log(negligible) / kappa; }
 
 SparseRowMatrix assemble_yukawa_near_field(const std::vector<Panel>& panels,
                                            const ClusterTree& tree, double kappa,
-                                           const ProgressCallback& progress) {
+                                           double negligible, const ProgressCallback& progress) {
   const GalerkinOperators<YukawaKernel> yukawa(YukawaKernel{kappa}, panels);
   const auto& perm = tree.permutation();
   const Eigen::Index n = tree.root().size();
@@ -24,7 +22,8 @@ SparseRowMatrix assemble_yukawa_near_field(const std::vector<Panel>& panels,
   // The dense path drops an entry when gap = |c_j − c_k| − r_j − r_k > g*; the distance of
   // the boxes around the panels is at most |c_j − c_k|, so clusters farther than
   // g* + 2·max radius hold no kept entry.
-  const double reach = yukawa_cutoff_gap(kappa) + 2.0 * max_radius;
+  const double cutoff = yukawa_cutoff_gap(kappa, negligible);
+  const double reach = cutoff + 2.0 * max_radius;
 
   std::vector<std::vector<Eigen::Index>> columns(static_cast<size_t>(n));
   std::vector<std::vector<double>> values(static_cast<size_t>(n));
@@ -52,6 +51,8 @@ SparseRowMatrix assemble_yukawa_near_field(const std::vector<Panel>& panels,
     auto& vals = values[size_t(i)];
     std::vector<std::pair<Eigen::Index, double>> single;
     for (const Eigen::Index j : near) {
+      const Panel& trial = panels[size_t(perm[size_t(j)])];
+      if ((test.centroid - trial.centroid).norm() - test.radius - trial.radius > cutoff) continue;
       const auto e = yukawa.entry(perm[size_t(i)], perm[size_t(j)]);
       if (e.double_layer != 0.0) {
         cols.push_back(j);

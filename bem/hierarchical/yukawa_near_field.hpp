@@ -2,8 +2,9 @@
 // The exterior (Yukawa) operators as one sparse matrix. Gκ = e^{−κr}/(4πr) decays
 // exponentially, so a Galerkin entry between panels whose gap exceeds
 // g* = −ln(YukawaAttenuation::negligible)/κ ≈ 23/κ is below 1e−10 of an unattenuated
-// entry and is zero in the dense path too (bem/galerkin_operators.hpp): storing only the
-// rest loses nothing the dense path keeps. A panel interacts with the panels within about
+// entry and is zero in the dense path too (bem/galerkin_operators.hpp): with that threshold
+// storing only the rest loses nothing the dense path keeps; the H-matrix solver derives the
+// threshold from its compression tolerance instead. A panel interacts with the panels within about
 // g* + its size, O(1) of them per row whatever N, so the matrix has O(N) entries.
 //
 // Layout, in cluster-tree order (bem/hierarchical/cluster_tree.hpp): N × 2N,
@@ -12,6 +13,7 @@
 
 #include <Eigen/SparseCore>
 
+#include "bem/galerkin_operators.hpp"
 #include "bem/hierarchical/cluster_tree.hpp"
 #include "bem/panel.hpp"
 #include "core/progress.hpp"
@@ -20,13 +22,17 @@ namespace bemshape::bem {
 
 using SparseRowMatrix = Eigen::SparseMatrix<double, Eigen::RowMajor, Eigen::Index>;
 
-/// The gap beyond which Yukawa entries are dropped, g* = −ln(negligible)/κ [model units].
-double yukawa_cutoff_gap(double kappa);
+/// The gap beyond which Yukawa entries attenuated below `negligible` are dropped,
+/// g* = −ln(negligible)/κ [model units].
+double yukawa_cutoff_gap(double kappa, double negligible);
 
 /// Assembles Y for the panels in tree order (parallel over rows; each row is computed the
-/// same way whatever the thread count).
-SparseRowMatrix assemble_yukawa_near_field(const std::vector<Panel>& panels,
-                                           const ClusterTree& tree, double kappa,
-                                           const ProgressCallback& progress = {});
+/// same way whatever the thread count). Entries between panels whose gap
+/// |c_j − c_k| − r_j − r_k gives e^{−κ·gap} < `negligible` are dropped; the default is the
+/// dense path's threshold, larger values (the H-matrix solver passes 1e−2·ε) trade entries
+/// below the compression tolerance for fewer nonzeros.
+SparseRowMatrix assemble_yukawa_near_field(
+    const std::vector<Panel>& panels, const ClusterTree& tree, double kappa,
+    double negligible = YukawaAttenuation::negligible, const ProgressCallback& progress = {});
 
 }  // namespace bemshape::bem
