@@ -4,9 +4,11 @@
 //
 //   bench_fast_path sphere|plate|box FACES [dense|hmatrix|both] [--tolerance T] [--aca E]
 //                   [--leaf L] [--block B]
+//   bench_fast_path entry-costs FACES     (where a row of the operators spends its time)
 //
 // Fields: shape, faces, solver, times (mesh, assemble, solve, features; seconds), iterations,
-// residual, peak_rss_mb (whole process), operator_mb, compression (H-matrix stored/dense
+// residual, cpu_seconds (user + system of all threads for the solve and features),
+// peak_rss_mb (whole process), operator_mb, compression (H-matrix stored/dense
 // entries of the Laplace part), error (relative error of the thickness against the closed
 // form: f_h at the ball's centre; paper thickness h_f = h0(1/f_h − a) of the faces in the
 // middle of a wall for the plate and the box) and, with `both`, the largest differences
@@ -18,7 +20,12 @@
 #include <cstdlib>
 #include <string>
 
+#include <sys/resource.h>
+
 #include "bem/dense_transmission_solver.hpp"
+#include "bem/galerkin_operators.hpp"
+#include "bem/laplace_kernel.hpp"
+#include "bem/yukawa_kernel.hpp"
 #include "bem/hmatrix_transmission_solver.hpp"
 #include "bem/potential_evaluation.hpp"
 #include "bem/surface_gradient.hpp"
@@ -130,13 +137,79 @@ Run run(const Problem& p, const std::string& solver, const bem::HMatrixSolverOpt
 }
 
 /// ‖a − b‖_F/‖a‖_F (a the dense reference).
+/// CPU time of the process so far (user + system, all threads) [s]: with other work on the
+/// machine it says more about the cost than wall times do.
+double cpu_seconds() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return double(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
+         1e-6 * double(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
+}
+
 double relative_difference(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
   return (a - b).norm() / a.norm();
 }
 
 }  // namespace
 
+/// Where a row of the Galerkin operators spends its time, on the sphere of `faces` faces at
+/// the default element size: pairs per row and microseconds per entry in each class of the
+/// entry generator's rule selection (bem/galerkin_operators.hpp), Yukawa and Laplace.
+int entry_costs(double faces) {
+  const Problem p = sphere(faces);
+  const auto parameters = bem::TransmissionParameters::from_shape(p.h0, kA);
+  const auto panels = bem::make_panels(p.mesh);
+  const bem::GalerkinOperators<bem::YukawaKernel> yukawa(bem::YukawaKernel{parameters.kappa}, panels);
+  const bem::GalerkinOperators<bem::LaplaceKernel> laplace(bem::LaplaceKernel{}, panels);
+  const char* names[] = {"touching", "near (eta < 2)", "middle (eta 2-4)", "attenuated", "far"};
+  double yukawa_time[5] = {}, laplace_time[5] = {};
+  long count[5] = {}, dropped = 0;
+  const int rows = 50;
+  for (Eigen::Index i = 0; i < rows; ++i)
+    for (Eigen::Index j = 0; j < Eigen::Index(panels.size()); ++j) {
+      const bem::Panel& a = panels[size_t(i)];
+      const bem::Panel& b = panels[size_t(j)];
+      const double distance = (a.centroid - b.centroid).norm();
+      const double ratio = distance / std::max(a.diameter, b.diameter);
+      const double attenuation =
+          std::exp(-parameters.kappa * std::max(0.0, distance - a.radius - b.radius));
+      int c = 4;
+      if (bem::GalerkinOperators<bem::LaplaceKernel>::touching(a, b)) c = 0;
+      else if (ratio < 2.0) c = 1;
+      else if (attenuation < bem::YukawaAttenuation::cheap_rule && ratio >= 1.5) c = 3;
+      else if (ratio < 4.0) c = 2;
+      auto t0 = Clock::now();
+      const auto y = yukawa.entry(i, j);
+      const double ty = seconds(t0);
+      t0 = Clock::now();
+      const auto l = laplace.entry(i, j);
+      const double tl = seconds(t0);
+      if (y.single_layer == 0.0 && y.double_layer == 0.0 && attenuation < bem::YukawaAttenuation::negligible) {
+        ++dropped;
+        laplace_time[4] += tl;
+        ++count[4];
+        continue;
+      }
+      (void)l;
+      yukawa_time[c] += ty;
+      laplace_time[c] += tl;
+      ++count[c];
+    }
+  std::printf("sphere, %ld faces, kappa*h = %.2f: per row, %d rows timed (one thread)\n",
+              long(panels.size()), parameters.kappa * p.mesh.max_edge_length(), rows);
+  std::printf("| pair class | pairs per row | Yukawa us/entry | Yukawa us/row | Laplace us/entry | Laplace us/row |\n|---|---|---|---|---|---|\n");
+  for (int c = 0; c < 5; ++c) {
+    const double per_row = double(count[c]) / rows;
+    const double y = count[c] ? 1e6 * yukawa_time[c] / double(count[c]) : 0.0;
+    const double l = count[c] ? 1e6 * laplace_time[c] / double(count[c]) : 0.0;
+    std::printf("| %s | %.1f | %.2f | %.0f | %.2f | %.0f |\n", names[c], per_row, y, y * per_row, l, l * per_row);
+  }
+  std::printf("(far includes %.1f pairs per row whose Yukawa entry is dropped)\n", double(dropped) / rows);
+  return 0;
+}
+
 int main(int argc, char** argv) {
+  if (argc == 3 && std::string(argv[1]) == "entry-costs") return entry_costs(std::atof(argv[2]));
   if (argc < 3) {
     std::fprintf(stderr, "usage: bench_fast_path sphere|plate|box FACES [dense|hmatrix|both] "
                          "[--tolerance T] [--aca E] [--leaf L] [--block B]\n");
@@ -165,16 +238,18 @@ int main(int argc, char** argv) {
       solver == "both" ? std::vector<std::string>{"dense", "hmatrix"} : std::vector<std::string>{solver};
   std::vector<Run> runs;
   for (const std::string& s : solvers) {
+    const double cpu_before = cpu_seconds();
     runs.push_back(run(p, s, options));
+    const double cpu = cpu_seconds() - cpu_before;
     const Run& r = runs.back();
     std::printf("{\"shape\": \"%s\", \"faces\": %ld, \"solver\": \"%s\", \"h0\": %.6g, "
                 "\"times\": {\"mesh\": %.3f, \"assemble\": %.3f, \"solve\": %.3f, \"features\": %.3f}, "
                 "\"iterations\": %d, \"residual\": %.3g, \"peak_rss_mb\": %.1f, \"operator_mb\": %.1f, "
-                "\"compression\": %.4f, \"error\": %.3e",
+                "\"compression\": %.4f, \"error\": %.3e, \"cpu_seconds\": %.1f",
                 shape.c_str(), long(p.mesh.num_faces()), s.c_str(), p.h0, mesh_seconds, r.assemble,
                 r.solve, r.features, r.solution.report.iterations, r.solution.report.residual,
                 double(peak_resident_bytes()) / 1e6, double(r.solution.report.operator_bytes) / 1e6,
-                r.solution.report.compression, r.error);
+                r.solution.report.compression, r.error, cpu);
     if (runs.size() == 2)
       std::printf(", \"difference\": {\"phi\": %.3e, \"q\": %.3e, \"thickness\": %.3e}",
                   relative_difference(runs[0].solution.phi, runs[1].solution.phi),
