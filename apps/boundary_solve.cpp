@@ -16,16 +16,10 @@
 namespace bemshape::apps {
 namespace {
 
-/// Memory the dense path may use: --max-memory if given, capped by the usable part of the
-/// available memory (the same budget core/memory.hpp's require_memory applies).
+/// Memory the dense path may use: --max-memory if given, capped by what the machine and
+/// `ulimit -v` allow (core/memory.hpp's budget, the one require_memory applies).
 std::uint64_t dense_budget_bytes(std::uint64_t max_memory_bytes) {
-  const std::uint64_t available = available_memory_bytes();
-  std::uint64_t budget = max_memory_bytes;
-  if (available > 0) {
-    const auto usable = static_cast<std::uint64_t>(kUsableMemoryFraction * double(available));
-    budget = budget == 0 ? usable : std::min(budget, usable);
-  }
-  return budget;
+  return memory_budget_bytes(max_memory_bytes);
 }
 
 /// The one-line refusal when the dense matrix does not fit: how many faces, how much memory,
@@ -42,7 +36,7 @@ std::uint64_t dense_budget_bytes(std::uint64_t max_memory_bytes) {
       << " GB for " << run.solver_mesh.num_faces() << " solver faces (edge "
       << number_text(run.max_edge, 3) << ", " << run.max_edge_rule << ") but only "
       << number_text(double(budget) / 1e9, 3) << " GB may be used"
-      << (setup.max_memory_bytes > 0 ? " (--max-memory)" : "") << "; use a coarser mesh, e.g. "
+      << memory_budget_reason(setup.max_memory_bytes) << "; use a coarser mesh, e.g. "
       << "--max-edge " << number_text(edge, 3) << " (about " << std::lround(fitting_faces)
       << " faces; flat walls stay accurate up to --max-edge "
       << number_text(2.5 * setup.a * setup.h0, 3) << ")";

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "apps/exit_codes.hpp"
+#include "apps/run_limits.hpp"
 #include "apps/report_text.hpp"
 #include "core/errors.hpp"
 #include "geometry/mesh_preparation.hpp"
@@ -125,6 +126,7 @@ void register_check_command(CLI::App& app, int& exit_code) {
       ->add_option("--weld-tolerance", options->weld_tolerance,
                    "Merge vertices closer than this fraction of the bounding-box diagonal")
       ->capture_default_str();
+  add_timeout_option(*check);
   check->callback([options, &exit_code] { run_check(*options, exit_code); });
 }
 

@@ -11,5 +11,14 @@ inline constexpr int kExitCheckFailed = 1;
 inline constexpr int kExitBadInput = 2;
 /// Numerical failure: no convergence, singular system, NaN; also internal errors.
 inline constexpr int kExitNumericalFailure = 3;
+/// --timeout expired: the run produced no result, like a solver that did not converge.
+inline constexpr int kExitTimedOut = 3;
+
+/// A signal (SIGINT, SIGTERM) stopped the run: 128 + its number, the shell's convention for
+/// a process ended by that signal (130 for SIGINT), so scripts see an interruption, not a
+/// numerical failure.
+inline constexpr int exit_code_for_signal(int signal) {
+  return 128 + signal;
+}
 
 }  // namespace bemshape::apps

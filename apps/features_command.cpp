@@ -20,6 +20,7 @@
 #include "apps/point_table.hpp"
 #include "apps/progress_display.hpp"
 #include "apps/report_text.hpp"
+#include "apps/run_limits.hpp"
 #include "apps/solver_mesh_options.hpp"
 #include "apps/stage_times.hpp"
 #include "bem/potential_evaluation.hpp"
@@ -49,7 +50,7 @@ struct FeaturesOptions {
   std::optional<double> skeleton_width;
   int threads = 0;
   bool quiet = false;
-  double max_memory_mb = 0.0;
+  std::uint64_t max_memory_bytes = 0;
 };
 
 /// Node grid over a bounding box: nodes at origin + i·spacing, symmetric about the box centre
@@ -153,7 +154,7 @@ void run_features(const FeaturesOptions& options, int& exit_code) {
   setup.max_edge = options.max_edge;
   setup.sharp_angle_degrees = options.sharp_angle;
   setup.solver = options.solver;
-  setup.max_memory_bytes = static_cast<std::uint64_t>(options.max_memory_mb * 1e6);
+  setup.max_memory_bytes = options.max_memory_bytes;
   if (grid_mode)
     setup.check_input = [&options](const geometry::PreparedMesh& input) {
       refuse_large_grid(options, input);
@@ -259,8 +260,8 @@ void register_features_command(CLI::App& app, int& exit_code) {
                   "Half-width of the skeleton band (default: grid spacing, or the element size)");
   cmd->add_option("--threads", options->threads, "Number of threads (default: all cores)");
   cmd->add_flag("--quiet", options->quiet, "No progress on stderr");
-  cmd->add_option("--max-memory", options->max_memory_mb,
-                  "Memory limit of the solver in MB (default: what the machine has)");
+  add_max_memory_option(*cmd, options->max_memory_bytes);
+  add_timeout_option(*cmd);
   cmd->callback([options, &exit_code] { run_features(*options, exit_code); });
 }
 

@@ -12,6 +12,7 @@
 #include "apps/exit_codes.hpp"
 #include "apps/output/png_writer.hpp"
 #include "apps/output/vti_writer.hpp"
+#include "apps/run_limits.hpp"
 #include "core/errors.hpp"
 #include "fem/binary_image.hpp"
 #include "fem/characteristic_function.hpp"
@@ -227,6 +228,7 @@ void register_fem_command(CLI::App& app, int& exit_code) {
          "inside tests per cell and axis (1: centre test, binary chi; K > 1: volume fraction)")
       ->capture_default_str();
   cmd->add_option("-o,--output", options->output, "output .vti path (default INPUT-stem_fem.vti)");
+  add_timeout_option(*cmd);
   cmd->callback([options, &exit_code]() {
     run(*options);
     exit_code = kExitSuccess;

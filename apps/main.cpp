@@ -1,6 +1,7 @@
 // The bemshape program: one CLI11 subcommand per file (check_command.cpp, ...), and the one
 // place where exceptions become messages on stderr and exit codes (exit_codes.hpp):
-//   InputError, ResourceError, CLI usage errors → 2;  NumericalError, internal errors → 3.
+//   InputError, ResourceError, CLI usage errors → 2;  NumericalError, internal errors → 3;
+//   CancelledError → 3 for --timeout, 128 + signal for SIGINT/SIGTERM (run_limits.hpp).
 // Every error is printed as one line "bemshape: error: <what>" followed by any details.
 #include <CLI/CLI.hpp>
 #include <exception>
@@ -13,6 +14,7 @@
 #include "apps/exit_codes.hpp"
 #include "apps/features_command.hpp"
 #include "apps/fem_command.hpp"
+#include "apps/run_limits.hpp"
 #include "apps/thickness_command.hpp"
 #include "core/errors.hpp"
 
@@ -41,6 +43,7 @@ int main(int argc, char** argv) {
   apps::register_fem_command(app, exit_code);
   apps::register_compare_command(app, exit_code);
 
+  apps::install_interrupt_handlers();
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -57,6 +60,9 @@ int main(int argc, char** argv) {
     return print_error(e.what(), apps::kExitBadInput);
   } catch (const NumericalError& e) {
     return print_error(e.what(), apps::kExitNumericalFailure);
+  } catch (const CancelledError& e) {
+    return print_error(e.what(), e.signal() != 0 ? apps::exit_code_for_signal(e.signal())
+                                                 : apps::kExitTimedOut);
   } catch (const std::bad_alloc&) {
     return print_error("out of memory", apps::kExitBadInput);
   } catch (const std::exception& e) {

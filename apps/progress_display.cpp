@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <exception>
 #include <iostream>
 
 namespace bemshape::apps {
@@ -34,7 +35,11 @@ ProgressDisplay::ProgressDisplay(bool quiet)
 ProgressDisplay::ProgressDisplay(Mode mode, std::ostream& out) : mode_(mode), out_(out) {}
 
 ProgressDisplay::~ProgressDisplay() {
-  finish();
+  // Unwinding from an error or a cancellation: the current stage did not finish.
+  if (mode_ == Mode::quiet)
+    return;
+  const std::lock_guard lock(mutex_);
+  end_stage_locked(std::uncaught_exceptions() > uncaught_exceptions_ ? "stopped" : "done");
 }
 
 ProgressCallback ProgressDisplay::callback() {
@@ -49,7 +54,7 @@ void ProgressDisplay::update(std::string_view stage, double fraction) {
   const std::lock_guard lock(mutex_);
   const auto now = Clock::now();
   if (stage != stage_) {
-    end_stage_locked();
+    end_stage_locked("done");
     stage_ = stage;
     stage_start_ = now;
     last_draw_ = {};
@@ -68,15 +73,15 @@ void ProgressDisplay::finish() {
   if (mode_ == Mode::quiet)
     return;
   const std::lock_guard lock(mutex_);
-  end_stage_locked();
+  end_stage_locked("done");
 }
 
-void ProgressDisplay::end_stage_locked() {
+void ProgressDisplay::end_stage_locked(const char* status) {
   if (stage_.empty())
     return;
   const auto now = Clock::now();
   const std::string line =
-      format_line(stage_, "done", seconds(now - stage_start_), seconds(now - start_));
+      format_line(stage_, status, seconds(now - stage_start_), seconds(now - start_));
   if (mode_ == Mode::live)
     out_ << '\r' << line << "\x1b[K\n" << std::flush;
   else

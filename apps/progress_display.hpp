@@ -11,6 +11,7 @@
 // Safe to call from several threads (a mutex guards the output).
 
 #include <chrono>
+#include <exception>
 #include <iosfwd>
 #include <memory>
 #include <mutex>
@@ -37,12 +38,14 @@ class ProgressDisplay {
   ProgressCallback callback();
   /// Reports `fraction` ∈ [0, 1] of `stage` done; a new stage name ends the previous stage.
   void update(std::string_view stage, double fraction);
-  /// Ends the current stage (prints its final line); called by the destructor too.
+  /// Ends the current stage (prints its final line). The destructor does the same, with
+  /// "stopped" instead of "done" when an exception is unwinding the run.
   void finish();
 
  private:
   using Clock = std::chrono::steady_clock;
-  void end_stage_locked();
+  /// Prints the current stage's final line with `status` ("done", "stopped").
+  void end_stage_locked(const char* status);
 
   Mode mode_;
   std::ostream& out_;
@@ -52,6 +55,8 @@ class ProgressDisplay {
   Clock::time_point start_ = Clock::now();
   Clock::time_point stage_start_ = start_;
   Clock::time_point last_draw_{};
+  /// std::uncaught_exceptions() at construction: more at destruction means unwinding.
+  int uncaught_exceptions_ = std::uncaught_exceptions();
 };
 
 }  // namespace bemshape::apps

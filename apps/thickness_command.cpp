@@ -20,6 +20,7 @@
 #include "apps/output/vtp_writer.hpp"
 #include "apps/progress_display.hpp"
 #include "apps/report_text.hpp"
+#include "apps/run_limits.hpp"
 #include "apps/solver_mesh_options.hpp"
 #include "apps/stage_times.hpp"
 #include "apps/surface_features.hpp"
@@ -47,7 +48,7 @@ struct ThicknessOptions {
   std::string report_path;
   int threads = 0;
   bool quiet = false;
-  double max_memory_mb = 0.0;
+  std::uint64_t max_memory_bytes = 0;
 };
 
 enum class OutputFormat { none, vtp, ply, csv };
@@ -297,8 +298,6 @@ void run_thickness(const ThicknessOptions& options, int& exit_code) {
       !(std::isfinite(*options.min_thickness) && *options.min_thickness > 0.0))
     throw InputError("--min-thickness must be a positive length, got " +
                      number_text(*options.min_thickness, 6));
-  if (!(options.max_memory_mb >= 0.0))
-    throw InputError("--max-memory must be a non-negative number of MB");
   const OutputFormat format = output_format(options.output);
   require_writable_folder(options.output, "-o");
   const OutputFormat solver_format = output_format(options.solver_output);
@@ -317,7 +316,7 @@ void run_thickness(const ThicknessOptions& options, int& exit_code) {
   setup.max_edge = options.max_edge;
   setup.sharp_angle_degrees = options.sharp_angle;
   setup.solver = options.solver;
-  setup.max_memory_bytes = static_cast<std::uint64_t>(options.max_memory_mb * 1e6);
+  setup.max_memory_bytes = options.max_memory_bytes;
   const BoundarySolveRun run = prepare_and_solve(setup, times, display.callback());
 
   features::FeatureParameters parameters;
@@ -393,8 +392,8 @@ void register_thickness_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--report", options->report_path, "Also write the report as JSON to this file");
   cmd->add_option("--threads", options->threads, "Number of threads (default: all cores)");
   cmd->add_flag("--quiet", options->quiet, "No progress on stderr");
-  cmd->add_option("--max-memory", options->max_memory_mb,
-                  "Memory limit of the solver in MB (default: what the machine has)");
+  add_max_memory_option(*cmd, options->max_memory_bytes);
+  add_timeout_option(*cmd);
   cmd->callback([options, &exit_code] { run_thickness(*options, exit_code); });
 }
 

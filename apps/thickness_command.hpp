@@ -1,8 +1,8 @@
 #pragma once
 // `bemshape thickness INPUT [--h0 L] [--a 0.2] [--measure principal|paper]
 //  [--min-thickness T] [--max-edge E] [-o OUT.vtp|.ply|.csv] [--report REPORT.json]
-//  [--threads N] [--quiet] [--max-memory MB]`: the local wall thickness of a solid part on its
-// surface, and optionally the CAD minimum-wall-thickness check.
+//  [--threads N] [--quiet] [--max-memory SIZE] [--timeout S]`: the local wall thickness of a
+// solid part on its surface, and optionally the CAD minimum-wall-thickness check.
 //
 // Pipeline: read, validate, repair → refine to the solver's element size → dense BEM solve
 // → features on the refined surface → statistics and thin regions (on the refined faces) →

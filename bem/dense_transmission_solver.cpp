@@ -5,12 +5,12 @@
 #include <cmath>
 #include <sstream>
 
-#include <Eigen/LU>
-
+#include "bem/blocked_lu.hpp"
 #include "bem/galerkin_operators.hpp"
 #include "bem/laplace_kernel.hpp"
 #include "bem/panel.hpp"
 #include "bem/yukawa_kernel.hpp"
+#include "core/cancellation.hpp"
 #include "core/errors.hpp"
 #include "core/memory.hpp"
 
@@ -62,6 +62,8 @@ BoundarySolution solve_transmission_dense(const geometry::SurfaceMesh& mesh,
   std::atomic<Eigen::Index> rows_done{0};
 #pragma omp parallel for schedule(dynamic, 8)
   for (Eigen::Index j = 0; j < n; ++j) {
+    // A cancelled run skips the remaining rows (an exception cannot leave the parallel loop).
+    if (cancellation_requested()) continue;
     // ½·M with M the P0 mass matrix diag(|T_j|).
     const double half_mass = 0.5 * mesh.face_areas()(j);
     Eigen::RowVector3d yukawa_of_jump = Eigen::RowVector3d::Zero();
@@ -82,6 +84,7 @@ BoundarySolution solve_transmission_dense(const geometry::SurfaceMesh& mesh,
       report_progress(progress, "assemble", double(done) / double(n));
     }
   }
+  throw_if_cancelled();
   report_progress(progress, "assemble", 1.0);
   BoundarySolution solution;
   solution.parameters = parameters;
@@ -90,18 +93,16 @@ BoundarySolution solve_transmission_dense(const geometry::SurfaceMesh& mesh,
   solution.report.assembly_seconds = seconds_since(start);
 
   const auto solve_start = Clock::now();
-  report_progress(progress, "factorise", 0.0);
-  const Eigen::MatrixXd a_copy = a;
-  Eigen::PartialPivLU<Eigen::Ref<Eigen::MatrixXd>> lu(a);
-  const Eigen::MatrixXd z = lu.solve(b);
-  report_progress(progress, "factorise", 1.0);
+  // Factorised as a copy: `a` is kept for the residual check.
+  const LuFactors lu = lu_factorise(a, progress);
+  const Eigen::MatrixXd z = lu_solve(lu, b);
   if (!z.allFinite())
     throw NumericalError("dense BEM solve: the solution contains NaN or Inf (singular system; "
                          "check the mesh for duplicate or degenerate faces)");
   double residual = 0.0;
   for (int i = 0; i < 3; ++i) {
     const double norm_b = b.col(i).norm();
-    if (norm_b > 0.0) residual = std::max(residual, (a_copy * z.col(i) - b.col(i)).norm() / norm_b);
+    if (norm_b > 0.0) residual = std::max(residual, (a * z.col(i) - b.col(i)).norm() / norm_b);
   }
   solution.report.residual = residual;
   solution.report.solve_seconds = seconds_since(solve_start);

@@ -10,6 +10,7 @@
 #include "bem/hierarchical/yukawa_near_field.hpp"
 #include "bem/laplace_kernel.hpp"
 #include "bem/panel.hpp"
+#include "core/cancellation.hpp"
 #include "core/errors.hpp"
 #include "core/memory.hpp"
 
@@ -113,6 +114,7 @@ BoundarySolution solve_transmission_hmatrix(const geometry::SurfaceMesh& mesh,
     Eigen::VectorXd x = Eigen::VectorXd::Zero(2 * n);
     const GmresResult result =
         gmres(system, precondition, b, x, gmres_options, [&](int iteration, double) {
+          throw_if_cancelled();  // called between GMRES iterations, outside parallel regions
           report_progress(progress, "solve",
                           (i + std::min(1.0, iteration / 30.0)) / 3.0);
         });

@@ -1,7 +1,11 @@
 #pragma once
 // Memory accounting for large allocations: how much the machine can give, how much this
 // process has used at its peak, and a guard that refuses an allocation that would not fit
-// with a message naming what to do instead (instead of an out-of-memory kill).
+// with a message naming what to do instead (instead of an out-of-memory kill). The budget
+// is the smallest of: the usable part of the machine's available memory, the address space
+// left under `ulimit -v`, and --max-memory.
+
+#include <sys/resource.h>
 
 #include <algorithm>
 #include <cstddef>
@@ -41,27 +45,70 @@ inline std::uint64_t peak_resident_bytes() {
   return 0;
 }
 
+/// Bytes this process may still map under its address-space limit (RLIMIT_AS, `ulimit -v`):
+/// the limit minus the current virtual size (VmSize); 0 if there is no limit, 1 if the limit
+/// is already used up.
+inline std::uint64_t address_space_left_bytes() {
+  rlimit limit{};
+  if (::getrlimit(RLIMIT_AS, &limit) != 0 || limit.rlim_cur == RLIM_INFINITY) return 0;
+  std::ifstream status("/proc/self/status");
+  std::string line;
+  std::uint64_t used = 0;
+  while (std::getline(status, line))
+    if (line.rfind("VmSize:", 0) == 0) {
+      std::istringstream fields(line.substr(7));
+      fields >> used;
+      used *= 1024;
+      break;
+    }
+  const auto cap = static_cast<std::uint64_t>(limit.rlim_cur);
+  return cap > used ? cap - used : 1;
+}
+
 /// Fraction of the available memory one allocation may claim: the rest is left for the
 /// operating system, the other arrays of the run and the file cache.
 inline constexpr double kUsableMemoryFraction = 0.8;
 
-/// Throws ResourceError if `bytes` exceed `limit_bytes` (when non-zero) or the usable part of
-/// the available memory. `what` names the allocation, `instead` says what the user can do.
+/// Bytes one large allocation may claim: the usable part of the available memory
+/// (kUsableMemoryFraction of MemAvailable), capped by the address space left under
+/// `ulimit -v` and by `limit_bytes` (--max-memory) when non-zero; 0 if nothing is known.
+inline std::uint64_t memory_budget_bytes(std::uint64_t limit_bytes = 0) {
+  std::uint64_t budget = limit_bytes;
+  const auto cap = [&budget](std::uint64_t bytes) {
+    if (bytes > 0) budget = budget == 0 ? bytes : std::min(budget, bytes);
+  };
+  const std::uint64_t available = available_memory_bytes();
+  if (available > 0) cap(static_cast<std::uint64_t>(kUsableMemoryFraction * double(available)));
+  const std::uint64_t address_space = address_space_left_bytes();
+  if (address_space > 0)
+    cap(static_cast<std::uint64_t>(kUsableMemoryFraction * double(address_space)));
+  return budget;
+}
+
+/// What sets memory_budget_bytes(limit_bytes), for messages: " (--max-memory)",
+/// " (ulimit -v)" or "" (the machine's available memory).
+inline std::string memory_budget_reason(std::uint64_t limit_bytes = 0) {
+  const std::uint64_t budget = memory_budget_bytes(limit_bytes);
+  if (limit_bytes > 0 && budget == limit_bytes) return " (--max-memory)";
+  const std::uint64_t address_space = address_space_left_bytes();
+  if (address_space > 0 &&
+      budget == static_cast<std::uint64_t>(kUsableMemoryFraction * double(address_space)))
+    return " (ulimit -v)";
+  return "";
+}
+
+/// Throws ResourceError if `bytes` exceed memory_budget_bytes(limit_bytes). `what` names the
+/// allocation, `instead` says what the user can do. The message names the binding limit
+/// (memory_budget_reason).
 inline void require_memory(std::uint64_t bytes, const std::string& what, const std::string& instead,
                            std::uint64_t limit_bytes = 0) {
-  const std::uint64_t available = available_memory_bytes();
-  std::uint64_t budget = limit_bytes;
-  if (available > 0) {
-    const auto usable = static_cast<std::uint64_t>(kUsableMemoryFraction * double(available));
-    budget = budget == 0 ? usable : std::min(budget, usable);
-  }
+  const std::uint64_t budget = memory_budget_bytes(limit_bytes);
   if (budget == 0 || bytes <= budget) return;
   std::ostringstream msg;
   msg.precision(3);
   msg << what << " needs " << double(bytes) / 1e9 << " GB but only " << double(budget) / 1e9
       << " GB may be used";
-  if (limit_bytes > 0 && limit_bytes == budget) msg << " (--max-memory)";
-  msg << "; " << instead;
+  msg << memory_budget_reason(limit_bytes) << "; " << instead;
   throw ResourceError(msg.str());
 }
 

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <string>
 
+#include "core/cancellation.hpp"
 #include "core/errors.hpp"
 #include "geometry/point_inside.hpp"
 
@@ -22,6 +23,8 @@ void fill_characteristic_function(VoxelGrid<D>& grid, const InsideTest<D>& insid
   const double step = grid.cell_size / samples_per_axis;
 #pragma omp parallel for schedule(dynamic, 1024)
   for (GridIndex e = 0; e < n; ++e) {
+    // A cancelled run skips the remaining cells (an exception cannot leave the loop).
+    if (cancellation_requested()) continue;
     const auto c = grid.cell_multi_index(e);
     const Eigen::Matrix<double, D, 1> corner = grid.node_position(c);
     int hits = 0;
@@ -36,6 +39,7 @@ void fill_characteristic_function(VoxelGrid<D>& grid, const InsideTest<D>& insid
     }
     grid.chi[static_cast<std::size_t>(e)] = static_cast<float>(hits) / static_cast<float>(samples);
   }
+  throw_if_cancelled();
 }
 
 template <int D>

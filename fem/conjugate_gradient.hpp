@@ -15,6 +15,7 @@
 
 #include <Eigen/Core>
 
+#include "core/cancellation.hpp"
 #include "core/errors.hpp"
 #include "core/progress.hpp"
 
@@ -64,6 +65,7 @@ ConjugateGradientReport conjugate_gradient(const Operator& A, const Precondition
       any = any || active[j];
     if (!any)
       break;
+    throw_if_cancelled();
     A.apply(P, Q);
     const Eigen::VectorXd pq = (P.array() * Q.array()).colwise().sum().transpose();
     for (Eigen::Index j = 0; j < m; ++j) {

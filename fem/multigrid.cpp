@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "core/assert.hpp"
+#include "core/cancellation.hpp"
 #include "core/errors.hpp"
 
 namespace bemshape::fem {
@@ -146,6 +147,7 @@ Multigrid<D>::Multigrid(ShapeFeatureOperator<D> fine, const MultigridOptions& op
     levels_.push_back(Level{std::move(coarse), {}, 0.0, {}, {}, {}, {}, {}});
   }
   for (auto& level : levels_) {
+    throw_if_cancelled();
     const auto& op = level.op;
     Eigen::VectorXd diag = op.diagonal();
     level.inverse_diagonal.resize(op.num_nodes());
@@ -159,6 +161,7 @@ Multigrid<D>::Multigrid(ShapeFeatureOperator<D> fine, const MultigridOptions& op
       v(i, 0) = level.inverse_diagonal[i] == 0.0 ? 0.0 : 1.0 + 0.5 * std::sin(12.9898 * i);
     double estimate = 0.0;
     for (int k = 0; k < kPowerIterations; ++k) {
+      throw_if_cancelled();
       v /= v.norm();
       op.apply(v, w);
       w.array().colwise() *= level.inverse_diagonal.array();

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "core/cancellation.hpp"
 #include "core/errors.hpp"
 #include "geometry/detail/cgal_mesh_algorithms.hpp"
 
@@ -31,6 +32,7 @@ SurfaceMesh refine_to_edge_length(const SurfaceMesh& mesh, double target_edge,
         << " faces (limit " << std::llround(options.max_faces) << "): choose a larger edge length";
     throw ResourceError(msg.str());
   }
+  throw_if_cancelled();
   report_progress(progress, "remeshing", 0.0);
   detail::CgalRemeshParameters parameters;
   parameters.target_edge = target_edge;
@@ -39,6 +41,7 @@ SurfaceMesh refine_to_edge_length(const SurfaceMesh& mesh, double target_edge,
   parameters.max_edge = options.max_edge_ratio * target_edge;
   detail::CgalRemeshResult result =
       detail::cgal_isotropic_remesh(mesh.vertices(), mesh.faces(), parameters);
+  throw_if_cancelled();
   report_progress(progress, "remeshing", 1.0);
   return SurfaceMesh(std::move(result.vertices), std::move(result.faces));
 }

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "core/cancellation.hpp"
 #include "core/errors.hpp"
 #include "geometry/mesh_orientation.hpp"
 #include "geometry/mesh_repair.hpp"
@@ -92,6 +93,7 @@ PreparedMesh inspect_triangle_soup(const TriangleSoup& soup, const std::string& 
     report.repairs.push_back("dropped " + counted(soup.collapsed_faces_dropped, "face", "faces") +
                              " with fewer than 3 distinct corners (reader)");
 
+  throw_if_cancelled();
   report_progress(progress, "welding", 0.0);
   const WeldResult weld = weld_vertices(soup.vertices, soup.faces, options.weld_relative_tolerance);
   report.weld_tolerance = weld.tolerance;
@@ -107,6 +109,7 @@ PreparedMesh inspect_triangle_soup(const TriangleSoup& soup, const std::string& 
     report.repairs.push_back("dropped " + counted(weld.unreferenced_removed, "vertex", "vertices") +
                              " no face uses");
 
+  throw_if_cancelled();
   report_progress(progress, "validation", 0.2);
   const MeshValidation before = validate_mesh(weld.vertices, weld.faces);
   const FaceCleanup cleanup = remove_degenerate_faces(weld.vertices, weld.faces);
@@ -177,6 +180,7 @@ PreparedMesh inspect_triangle_soup(const TriangleSoup& soup, const std::string& 
                     " that cannot be removed",
                 "they lie on a hole or a non-manifold edge; fix the surface in CAD");
 
+  throw_if_cancelled();
   report_progress(progress, "self-intersections", 0.4);
   bool closed = after.closed_manifold() && consistent.orientable && cleanup.zero_area_left == 0;
   if (!after.nonmanifold_edges && !after.nonmanifold_vertices && consistent.orientable &&
@@ -194,6 +198,7 @@ PreparedMesh inspect_triangle_soup(const TriangleSoup& soup, const std::string& 
                 "it needs a manifold, orientable surface");
   }
 
+  throw_if_cancelled();
   report_progress(progress, "orientation", 0.8);
   Eigen::MatrixX3i faces = consistent.faces;
   if (closed) {
@@ -255,6 +260,7 @@ PreparedMesh inspect_mesh_file(const std::filesystem::path& path,
                                const ProgressCallback& progress) {
   report_progress(progress, "reading", 0.0);
   const TriangleSoup soup = read_triangle_soup(path);
+  throw_if_cancelled();
   return inspect_triangle_soup(soup, path.string(), options, progress);
 }
 

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "core/cancellation.hpp"
 #include "core/errors.hpp"
 
 namespace bemshape::output {
@@ -61,6 +62,9 @@ void AtomicFileWriter::write(const void* data, std::size_t bytes) {
 }
 
 void AtomicFileWriter::commit() {
+  // A run stopped by --timeout or a signal publishes nothing: the destructor removes the
+  // temporary file and an existing target stays as it was.
+  throw_if_cancelled();
   // Readable like an ordinary new file (mkstemp creates it 0600).
   const mode_t mask = ::umask(0);
   ::umask(mask);
@@ -76,6 +80,16 @@ void AtomicFileWriter::commit() {
   if (std::rename(temporary_.c_str(), target_.c_str()) != 0)
     throw InputError(error_text(target_, "rename the temporary file onto"));
   committed_ = true;
+  // The rename itself is durable once the folder is synced; a failure here (some file
+  // systems do not allow syncing a folder) leaves a complete file, so it is not an error.
+  std::filesystem::path folder = target_.parent_path();
+  if (folder.empty())
+    folder = ".";
+  const int folder_fd = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY);
+  if (folder_fd >= 0) {
+    ::fsync(folder_fd);
+    ::close(folder_fd);
+  }
 }
 
 void write_file_atomically(const std::filesystem::path& path, std::string_view bytes) {

@@ -1,6 +1,7 @@
 #pragma once
 // Atomic file output: bytes go to a temporary file in the target's folder, which is flushed,
-// fsync'ed and renamed over the target on commit(). A run that fails (exception, crash,
+// fsync'ed and renamed over the target on commit() (the folder is fsync'ed after the rename).
+// commit() refuses (CancelledError) once the run was cancelled (core/cancellation.hpp). A run that fails (exception, crash,
 // full disk) never leaves a half-written target: the temporary is removed by the destructor
 // if commit() was not reached, and rename() within one folder is atomic on POSIX.
 

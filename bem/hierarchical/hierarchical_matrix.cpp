@@ -5,6 +5,8 @@
 
 #include <omp.h>
 
+#include "core/cancellation.hpp"
+
 namespace bemshape::bem {
 
 HierarchicalMatrix::HierarchicalMatrix(const ClusterTree& tree,
@@ -37,6 +39,8 @@ HierarchicalMatrix::HierarchicalMatrix(const ClusterTree& tree,
   const std::size_t total = blocks_.size();
 #pragma omp parallel for schedule(dynamic, 1)
   for (std::size_t k = 0; k < total; ++k) {
+    // A cancelled run skips the remaining blocks (an exception cannot leave the loop).
+    if (cancellation_requested()) continue;
     Block& b = blocks_[k];
     const Eigen::Index m = b.row_end - b.row_begin, n = b.col_end - b.col_begin;
     bool stored = false;
@@ -76,6 +80,7 @@ HierarchicalMatrix::HierarchicalMatrix(const ClusterTree& tree,
       report_progress(progress, "assemble", double(finished) / double(total));
     }
   }
+  throw_if_cancelled();
   stats_.full_entries = std::uint64_t(rows_) * std::uint64_t(g) * std::uint64_t(rows_);
   for (const Block& b : blocks_) {
     if (b.is_low_rank) {

@@ -6,6 +6,7 @@
 
 #include "bem/galerkin_operators.hpp"
 #include "bem/yukawa_kernel.hpp"
+#include "core/cancellation.hpp"
 
 namespace bemshape::bem {
 
@@ -30,6 +31,8 @@ SparseRowMatrix assemble_yukawa_near_field(const std::vector<Panel>& panels,
   std::atomic<Eigen::Index> rows_done{0};
 #pragma omp parallel for schedule(dynamic, 16)
   for (Eigen::Index i = 0; i < n; ++i) {
+    // A cancelled run skips the remaining rows (an exception cannot leave the parallel loop).
+    if (cancellation_requested()) continue;
     const Panel& test = panels[size_t(perm[size_t(i)])];
     BoundingBox box;
     for (const auto& c : test.corners) box.extend(c);
@@ -70,6 +73,7 @@ SparseRowMatrix assemble_yukawa_near_field(const std::vector<Panel>& panels,
       report_progress(progress, "assemble exterior", double(done) / double(n));
     }
   }
+  throw_if_cancelled();
   SparseRowMatrix y(n, 2 * n);
   Eigen::VectorX<Eigen::Index> counts(n);
   for (Eigen::Index i = 0; i < n; ++i) counts(i) = static_cast<Eigen::Index>(columns[size_t(i)].size());

@@ -1,0 +1,99 @@
+// Determinism of the bemshape executable: the same input, options and thread count give
+// bit-identical output files, and 1 and 2 threads (--threads) agree to 1e-10 relative
+// (OpenMP splits the dense assembly, the LU's matrix products and the point evaluation
+// differently, so the rounding of sums may differ in the last bits, but no more).
+#include <stdlib.h>
+
+#include <catch2/catch.hpp>
+
+#include "fem/binary_image.hpp"
+#include "geometry/primitive_meshes.hpp"
+#include "tests/apps/bemshape_runner.hpp"
+
+using namespace bemshape;
+using namespace bemshape::testing;
+
+namespace {
+
+/// Agreement of two runs: |a − b| ≤ 1e-10 · (largest |value| of the column), the scale of
+/// the column (a normal component near 0 is compared at the scale of the normals, 1).
+constexpr double kThreadAgreement = 1e-10;
+
+double column_deviation(const CsvTable& a, const CsvTable& b) {
+  REQUIRE(a.header == b.header);
+  REQUIRE(a.rows.rows() == b.rows.rows());
+  double worst = 0.0;
+  for (Eigen::Index c = 0; c < a.rows.cols(); ++c) {
+    const double scale = std::max(a.rows.col(c).cwiseAbs().maxCoeff(), 1e-300);
+    worst = std::max(worst, (a.rows.col(c) - b.rows.col(c)).cwiseAbs().maxCoeff() / scale);
+  }
+  return worst;
+}
+
+/// A ball of 500 faces (radius 0.5): a solve of a few seconds.
+std::string small_ball() {
+  static const std::string path =
+      write_mesh(geometry::make_geodesic_sphere(0.5, 5), "determinism_ball.stl");
+  return path;
+}
+
+}  // namespace
+
+TEST_CASE("thickness: same input and threads give bit-identical files, 1 vs 2 threads agree to 1e-10") {
+  const auto run = [](int threads, const std::string& tag) {
+    const std::string csv = scratch(tag + ".csv"), vtp = scratch(tag + ".vtp");
+    const Run r = run_bemshape("thickness '" + small_ball() + "' --h0 0.3 --max-edge 0.12 --threads " +
+                               std::to_string(threads) + " --quiet -o '" + csv +
+                               "' --solver-output '" + vtp + "'");
+    CAPTURE(r.err);
+    REQUIRE(r.exit_code == 0);
+    return std::pair{slurp(csv), slurp(vtp)};
+  };
+  const auto first = run(2, "det_a"), second = run(2, "det_b"), single = run(1, "det_c");
+  CHECK(first.first == second.first);
+  CHECK(first.second == second.second);
+  const double deviation = column_deviation(parse_csv(first.first), parse_csv(single.first));
+  CAPTURE(deviation);
+  CHECK(deviation <= kThreadAgreement);
+}
+
+TEST_CASE("features --grid: same threads bit-identical, 1 vs 2 threads 1e-10") {
+  const auto run = [](int threads, const std::string& tag) {
+    const std::string csv = scratch(tag + ".csv");
+    const Run r = run_bemshape("features '" + small_ball() + "' --h0 0.3 --max-edge 0.12 --grid 0.15" +
+                               " --threads " + std::to_string(threads) + " --quiet -o '" + csv + "'");
+    CAPTURE(r.err);
+    REQUIRE(r.exit_code == 0);
+    return slurp(csv);
+  };
+  const std::string first = run(2, "feat_a"), second = run(2, "feat_b"), single = run(1, "feat_c");
+  CHECK(first == second);
+  const double deviation = column_deviation(parse_csv(first), parse_csv(single));
+  CAPTURE(deviation);
+  CHECK(deviation <= kThreadAgreement);
+}
+
+TEST_CASE("fem on a PNG: same threads give a bit-identical .vti") {
+  // An L of 30×30 pixels in a 40×40 image.
+  fem::BinaryImage<2> image;
+  image.size = {40, 40};
+  image.solid.assign(1600, 0);
+  for (int y = 5; y < 35; ++y)
+    for (int x = 5; x < 35; ++x)
+      if (x < 15 || y < 15) image.solid[static_cast<std::size_t>(y * 40 + x)] = 1;
+  const std::string png = scratch("determinism_l.png");
+  fem::write_binary_png(png, image);
+  // fem has no --threads option: the thread count comes from OMP_NUM_THREADS.
+  ::setenv("OMP_NUM_THREADS", "2", 1);
+  const auto run = [&](const std::string& tag) {
+    const std::string vti = scratch(tag + ".vti");
+    const Run r = run_bemshape("fem '" + png + "' --cell 1 --h0 10 -o '" + vti + "'");
+    CAPTURE(r.err);
+    REQUIRE(r.exit_code == 0);
+    return slurp(vti);
+  };
+  const std::string first = run("fem_a"), second = run("fem_b");
+  ::unsetenv("OMP_NUM_THREADS");
+  CHECK(first.size() > 1000);
+  CHECK(first == second);
+}

@@ -1,0 +1,192 @@
+// apps/run_limits.hpp end to end: --timeout and SIGINT stop a long solve cleanly (exit code,
+// one-line message, no output file, an existing output untouched, no temporary file left),
+// and --max-memory accepts units and refuses what does not fit.
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <catch2/catch.hpp>
+#include <thread>
+
+#include "geometry/primitive_meshes.hpp"
+#include "tests/apps/bemshape_runner.hpp"
+
+using namespace bemshape;
+using namespace bemshape::testing;
+
+namespace {
+
+/// A ball (R = 0.5) whose solve at --max-edge 0.055 takes far longer than the limits below:
+/// about 2400 solver faces; dense: a 4800² system (0.37 GB), a minute of assembly on two
+/// cores; H-matrix (the default above 2000 faces): about 45 s.
+const char* kSlowOptions = " --h0 0.3 --max-edge 0.055";
+
+std::string slow_ball() {
+  static const std::string path = write_mesh(geometry::make_geodesic_sphere(0.5, 8), "slow_ball.stl");
+  return path;
+}
+
+/// Files in the scratch folder whose name starts with ".<name>.tmp-" (AtomicFileWriter's
+/// temporaries).
+int temporaries_of(const std::string& name) {
+  int count = 0;
+  for (const auto& entry : fs::directory_iterator(scratch_folder()))
+    if (entry.path().filename().string().rfind("." + name + ".tmp-", 0) == 0) ++count;
+  return count;
+}
+
+struct Child {
+  pid_t pid = -1;
+  std::string err_file;
+};
+
+/// Starts `bemshape <arguments...>` with stdout and stderr in files; does not wait.
+Child start_bemshape(const std::vector<std::string>& arguments, const std::string& tag) {
+  Child child;
+  child.err_file = scratch(tag + ".stderr");
+  const std::string out_file = scratch(tag + ".stdout");
+  std::vector<std::string> argv_strings{BEMSHAPE_EXECUTABLE};
+  argv_strings.insert(argv_strings.end(), arguments.begin(), arguments.end());
+  std::vector<char*> argv;
+  for (std::string& a : argv_strings) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  child.pid = ::fork();
+  REQUIRE(child.pid >= 0);
+  if (child.pid == 0) {
+    if (!std::freopen(out_file.c_str(), "w", stdout) ||
+        !std::freopen(child.err_file.c_str(), "w", stderr))
+      ::_exit(126);
+    ::execv(argv[0], argv.data());
+    ::_exit(127);
+  }
+  return child;
+}
+
+/// Waits for `child`; returns its exit code (-signal if a signal ended it).
+int wait_for(const Child& child) {
+  int status = 0;
+  REQUIRE(::waitpid(child.pid, &status, 0) == child.pid);
+  if (WIFSIGNALED(status)) return -WTERMSIG(status);
+  return WEXITSTATUS(status);
+}
+
+}  // namespace
+
+TEST_CASE("thickness --timeout 1 on a minute-long solve: exit 3 within seconds, one line, no output") {
+  // Both solvers: the dense path polls every assembly row and LU panel, the H-matrix path
+  // every assembled block, near-field row and GMRES iteration.
+  for (const std::string solver : {"dense", "hmatrix"}) {
+    const std::string out = scratch("timeout_" + solver + ".csv");
+    const Run r = run_bemshape("thickness '" + slow_ball() + "'" + kSlowOptions + " --solver " +
+                               solver + " --timeout 1 --quiet -o '" + out + "'");
+    CAPTURE(solver, r.out, r.err, r.seconds);
+    CHECK(r.exit_code == 3);
+    CHECK(r.err ==
+          "bemshape: error: time limit of 1 s (--timeout) reached; stopped cleanly, no "
+          "output file was written or changed; raise --timeout or use a coarser mesh\n");
+    // Reading and remeshing take a fraction of a second; the rest is one unit of work.
+    CHECK(r.seconds < 10.0);
+    CHECK_FALSE(fs::exists(out));
+    CHECK(temporaries_of("timeout_" + solver + ".csv") == 0);
+  }
+}
+
+TEST_CASE("thickness --timeout leaves an existing output file byte for byte as it was") {
+  const std::string out = scratch("kept.csv");
+  const std::string before = "x,y,z\n1,2,3\n";
+  std::ofstream(out, std::ios::binary) << before;
+  const Run r = run_bemshape("thickness '" + slow_ball() + "'" + kSlowOptions +
+                             " --timeout 0.5 --quiet -o '" + out + "'");
+  CAPTURE(r.err);
+  CHECK(r.exit_code == 3);
+  CHECK(slurp(out) == before);
+  CHECK(temporaries_of("kept.csv") == 0);
+}
+
+TEST_CASE("features and fem --timeout: exit 3 as well") {
+  const Run features = run_bemshape("features '" + slow_ball() + "'" + kSlowOptions +
+                                    " --grid 0.1 --timeout 1 --quiet -o '" +
+                                    scratch("features_timeout.vti") + "'");
+  CAPTURE(features.err);
+  CHECK(features.exit_code == 3);
+  CHECK_THAT(features.err, Catch::Contains("--timeout"));
+  CHECK_FALSE(fs::exists(scratch("features_timeout.vti")));
+  // Cells of 0.012 on a ball of diameter 1: about 128³ cells, voxelisation and CG take
+  // well over a second.
+  const Run fem = run_bemshape("fem '" + slow_ball() + "' --cell 0.012 --timeout 1 -o '" +
+                               scratch("fem_timeout.vti") + "'");
+  CAPTURE(fem.err);
+  CHECK(fem.exit_code == 3);
+  CHECK_THAT(fem.err, Catch::Contains("--timeout"));
+  CHECK_FALSE(fs::exists(scratch("fem_timeout.vti")));
+}
+
+TEST_CASE("timeout must be a positive number of seconds") {
+  for (const char* value : {"0", "-3", "abc"}) {
+    const Run r = run_bemshape("thickness '" + slow_ball() + "' --h0 0.3 --timeout " + value);
+    CAPTURE(value, r.err);
+    CHECK(r.exit_code == 2);
+    CHECK_THAT(r.err, Catch::Contains("--timeout"));
+  }
+}
+
+TEST_CASE("SIGINT during the solve: exit 130, one line, no output, existing output untouched") {
+  const std::string out = scratch("interrupted.csv");
+  const std::string before = "previous result\n";
+  std::ofstream(out, std::ios::binary) << before;
+  const Child child = start_bemshape(
+      {"thickness", slow_ball(), "--h0", "0.3", "--max-edge", "0.055", "-o", out}, "sigint");
+  // The progress display (stderr is not a terminal: one line per finished stage) reports
+  // "remeshing done" when the assembly starts.
+  const auto start = std::chrono::steady_clock::now();
+  while (slurp(child.err_file).find("remeshing") == std::string::npos &&
+         std::chrono::steady_clock::now() - start < std::chrono::seconds(60))
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  const auto sent = std::chrono::steady_clock::now();
+  REQUIRE(::kill(child.pid, SIGINT) == 0);
+  const int code = wait_for(child);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - sent).count();
+  const std::string err = slurp(child.err_file);
+  CAPTURE(err, seconds);
+  CHECK(code == 130);
+  CHECK_THAT(err, Catch::EndsWith("bemshape: error: interrupted by signal 2; stopped cleanly, "
+                                  "no output file was written or changed\n"));
+  CHECK_THAT(err, Catch::Contains("assemble") && Catch::Contains("stopped"));  // not "done"
+  CHECK(seconds < 10.0);
+  CHECK(slurp(out) == before);
+  CHECK(temporaries_of("interrupted.csv") == 0);
+}
+
+TEST_CASE("SIGTERM stops the run the same way, exit 143") {
+  const Child child = start_bemshape(
+      {"thickness", slow_ball(), "--h0", "0.3", "--max-edge", "0.055", "--quiet"}, "sigterm");
+  std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+  REQUIRE(::kill(child.pid, SIGTERM) == 0);
+  CHECK(wait_for(child) == 143);
+  CHECK_THAT(slurp(child.err_file), Catch::Contains("interrupted by signal 15"));
+}
+
+TEST_CASE("max-memory with units: too small is refused naming the option, bad units too") {
+  const std::string mesh = write_mesh(geometry::make_geodesic_sphere(0.5, 3), "small_ball.stl");
+  // About 80 solver faces at --max-edge 0.3: a 160² system, 0.4 MB with its copy.
+  Run r =
+      run_bemshape("thickness '" + mesh + "' --h0 0.3 --max-edge 0.3 --max-memory 100KB --quiet");
+  CAPTURE(r.err);
+  CHECK(r.exit_code == 2);
+  CHECK_THAT(r.err, Catch::Contains("(--max-memory)") && Catch::Contains("--max-edge"));
+  r = run_bemshape("thickness '" + mesh + "' --h0 0.3 --max-edge 0.3 --max-memory 0.5KiB --quiet");
+  CHECK(r.exit_code == 2);
+  for (const char* bad : {"12XB", "0", "-5", "G"}) {
+    r = run_bemshape("thickness '" + mesh + "' --h0 0.3 --max-memory " + bad);
+    CAPTURE(bad, r.err);
+    CHECK(r.exit_code == 2);
+    CHECK_THAT(r.err, Catch::Contains("--max-memory '") && Catch::Contains("expected a positive size"));
+  }
+  r = run_bemshape("thickness '" + mesh + "' --h0 0.3 --max-edge 0.3 --max-memory 0.5GiB --quiet");
+  CAPTURE(r.err);
+  CHECK(r.exit_code == 0);
+  r = run_bemshape("thickness '" + mesh + "' --h0 0.3 --max-edge 0.3 --max-memory 3 --quiet");
+  CHECK(r.exit_code == 0);  // plain number: MB
+}
