@@ -43,9 +43,11 @@ namespace fs = std::filesystem;
 /// quotient across the jump of χ; two cells is where both methods describe the same solid.
 constexpr double kProbeDepthCells = 2.0;
 /// Default cap on the probes. The BEM evaluates each probe against every solver face (two
-/// kernels, Laplace and Yukawa): 2000 probes on the 1280-face ball take about 13 s on two
-/// busy cores, as long as its dense solve, and the median and 95th percentile of 2000
-/// samples are stable to a few per cent of their value.
+/// kernels, Laplace and Yukawa): 2000 probes on the 1280-face ball take 8–20 s on two busy
+/// cores, about as long as its dense solve, and the median and 95th percentile of 2000
+/// samples are stable to a few per cent of their value. Probes within a panel diameter of
+/// the surface cost several times more (near-surface interpolation, polar quadrature): on
+/// thin walls meshed coarsely, use fewer (docs/usage.md).
 constexpr long long kDefaultMaxProbes = 2000;
 /// Bins of the h_p histogram on stdout.
 constexpr int kHistogramBins = 12;
@@ -59,6 +61,7 @@ struct CompareOptions {
   double a = 0.2;
   std::optional<double> max_edge;
   double sharp_angle = geometry::RemeshingOptions{}.sharp_angle_degrees;
+  SolverChoice solver;  ///< --solver, --tolerance
   long long max_probes = kDefaultMaxProbes;
   std::string report_path;
   int threads = 0;
@@ -342,6 +345,7 @@ void run_compare(const CompareOptions& options, int& exit_code) {
   setup.a = parameters.a;
   setup.max_edge = options.max_edge;
   setup.sharp_angle_degrees = options.sharp_angle;
+  setup.solver = options.solver;
   setup.check_input = [&](const geometry::PreparedMesh& input) {
     report_progress(display.callback(), "voxelise", 0.0);
     c.voxels = voxelise_and_pick_probes(options, input.mesh, parameters, times);
@@ -413,6 +417,7 @@ void register_compare_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--a", options->a, "Dimensionless diffusion parameter a of the PDE")
       ->capture_default_str();
   add_solver_mesh_options(*cmd, options->max_edge, options->sharp_angle);
+  add_solver_choice_options(*cmd, options->solver);
   cmd->add_option("--max-probes", options->max_probes,
                   "At most this many probe points, spread evenly over the eligible cell centres "
                   "(each costs one BEM evaluation per solver face)")
