@@ -1,0 +1,38 @@
+#pragma once
+// The body of the mesh-file harnesses (fuzz_stl, fuzz_obj, fuzz_off, fuzz_ply): read the
+// bytes as a file of the given extension, then run validation and repair on what was read,
+// and check the pipeline's promise: a mesh reported usable is closed and manifold, every
+// face index is in range and every coordinate finite.
+
+#include <cstdlib>
+
+#include "fuzz/fuzz_input.hpp"
+#include "geometry/mesh_io.hpp"
+#include "geometry/mesh_preparation.hpp"
+#include "geometry/mesh_validation.hpp"
+
+namespace bemshape::fuzz {
+
+/// Aborts (a finding) if a mesh the pipeline calls usable breaks its contract.
+inline void check_prepared(const geometry::PreparedMesh& prepared) {
+  if (!prepared.report.usable()) return;
+  const auto& v = prepared.mesh.vertices();
+  const auto& f = prepared.mesh.faces();
+  if (f.rows() == 0 || !v.allFinite()) std::abort();
+  if (f.size() > 0 && (f.minCoeff() < 0 || f.maxCoeff() >= v.rows())) std::abort();
+  if (!geometry::validate_mesh(v, f).closed_manifold()) std::abort();
+}
+
+inline int run_mesh_file(const std::uint8_t* data, std::size_t size, const char* extension) {
+  const auto path = input_file(data, size, extension);
+  refusal_allowed([&] {
+    const geometry::TriangleSoup soup = geometry::read_triangle_soup(path);
+    if (soup.faces.rows() > 0 && (soup.faces.minCoeff() < 0 ||
+                                  soup.faces.maxCoeff() >= soup.vertices.rows()))
+      std::abort();  // the reader promises valid indices
+    check_prepared(geometry::inspect_triangle_soup(soup, path.string()));
+  });
+  return 0;
+}
+
+}  // namespace bemshape::fuzz
