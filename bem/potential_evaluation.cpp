@@ -2,7 +2,6 @@
 
 #include <atomic>
 
-#include "bem/hierarchical/hierarchical_representation.hpp"
 #include "bem/laplace_kernel.hpp"
 #include "core/cancellation.hpp"
 #include "bem/surface_gradient.hpp"
@@ -76,21 +75,6 @@ PotentialField represent(const geometry::SurfaceMesh& mesh, const std::vector<Pa
   return field;
 }
 
-/// Above this many point–panel pairs the representation formulas go through the H-matrix
-/// (bem/hierarchical/hierarchical_representation.hpp): below it building the trees and the
-/// compressed operator costs more than it saves (measured: equal at about 10⁷ pairs on the
-/// ball, docs/benchmarks.md).
-constexpr double kDirectPairs = 1e7;
-
-PotentialField represent_any(const geometry::SurfaceMesh& mesh, const std::vector<Panel>& panels,
-                             const BoundarySolution& solution,
-                             const Eigen::Ref<const Eigen::MatrixX3d>& points,
-                             const ProgressCallback& progress) {
-  if (double(points.rows()) * double(panels.size()) > kDirectPairs)
-    return represent_hierarchical(mesh, panels, solution, points, progress);
-  return represent(mesh, panels, solution, points, progress);
-}
-
 }  // namespace
 
 PotentialField evaluate_potential(const geometry::SurfaceMesh& mesh,
@@ -98,7 +82,7 @@ PotentialField evaluate_potential(const geometry::SurfaceMesh& mesh,
                                   const Eigen::Ref<const Eigen::MatrixX3d>& points,
                                   const ProgressCallback& progress) {
   const std::vector<Panel> panels = make_panels(mesh);
-  PotentialField field = represent_any(mesh, panels, solution, points, progress);
+  PotentialField field = represent(mesh, panels, solution, points, progress);
 
   // Near-surface interior targets: ∇s along the segment from the closest surface point y
   // inward is smooth (s is harmonic), so interpolate it quadratically in the distance t from
@@ -135,7 +119,7 @@ PotentialField evaluate_potential(const geometry::SurfaceMesh& mesh,
       samples.row(2 * i) = (y + spacing[static_cast<size_t>(i)] * u).transpose();
       samples.row(2 * i + 1) = (y + 2.0 * spacing[static_cast<size_t>(i)] * u).transpose();
     }
-    const PotentialField far = represent_any(mesh, panels, solution, samples, {});
+    const PotentialField far = represent(mesh, panels, solution, samples, {});
     for (Eigen::Index i = 0; i < m; ++i) {
       const Eigen::Index p = near[static_cast<size_t>(i)];
       const Eigen::Index f = nearest.faces(p);

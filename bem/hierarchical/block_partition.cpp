@@ -5,13 +5,18 @@
 namespace bemshape::bem {
 
 BlockPartition partition_blocks(const ClusterTree& tree, double eta) {
+  return partition_blocks(tree, tree, eta);
+}
+
+BlockPartition partition_blocks(const ClusterTree& row_tree, const ClusterTree& col_tree,
+                                double eta) {
   BlockPartition out;
   std::vector<BlockIndex> stack{{0, 0}};
   while (!stack.empty()) {
     const BlockIndex b = stack.back();
     stack.pop_back();
-    const Cluster& t = tree.cluster(b.rows);
-    const Cluster& s = tree.cluster(b.cols);
+    const Cluster& t = row_tree.cluster(b.rows);
+    const Cluster& s = col_tree.cluster(b.cols);
     const double distance = t.box.distance(s.box);
     if (std::min(t.box.diameter(), s.box.diameter()) <= eta * distance) {
       out.admissible.push_back(b);

@@ -29,6 +29,11 @@ struct BlockPartition {
 /// near field stays a few leaf blocks per row).
 inline constexpr double kDefaultAdmissibility = 1.0;
 
+/// Blocks of a square operator on one tree.
 BlockPartition partition_blocks(const ClusterTree& tree, double eta = kDefaultAdmissibility);
+/// Blocks of an operator from the elements of `col_tree` to those of `row_tree` (e.g. from
+/// panels to target points); BlockIndex::rows indexes row_tree, ::cols col_tree.
+BlockPartition partition_blocks(const ClusterTree& row_tree, const ClusterTree& col_tree,
+                                double eta = kDefaultAdmissibility);
 
 }  // namespace bemshape::bem

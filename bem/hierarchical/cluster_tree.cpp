@@ -8,15 +8,30 @@
 namespace bemshape::bem {
 
 ClusterTree::ClusterTree(const std::vector<Panel>& panels, Eigen::Index leaf_size) {
-  if (leaf_size < 1) throw InternalError("ClusterTree: leaf size must be positive");
   const auto n = static_cast<Eigen::Index>(panels.size());
-  permutation_.resize(panels.size());
+  Eigen::MatrixX3d centres(n, 3), corners(3 * n, 3);
+  for (Eigen::Index p = 0; p < n; ++p) {
+    centres.row(p) = panels[size_t(p)].centroid.transpose();
+    for (int k = 0; k < 3; ++k) corners.row(3 * p + k) = panels[size_t(p)].corners[size_t(k)].transpose();
+  }
+  build(centres, corners, 3, leaf_size);
+}
+
+ClusterTree::ClusterTree(const Eigen::Ref<const Eigen::MatrixX3d>& points, Eigen::Index leaf_size) {
+  build(points, points, 1, leaf_size);
+}
+
+void ClusterTree::build(const Eigen::MatrixX3d& centres, const Eigen::MatrixX3d& corners,
+                        int corners_per_element, Eigen::Index leaf_size) {
+  if (leaf_size < 1) throw InternalError("ClusterTree: leaf size must be positive");
+  const Eigen::Index n = centres.rows();
+  permutation_.resize(size_t(n));
   std::iota(permutation_.begin(), permutation_.end(), Eigen::Index{0});
   const auto box_of = [&](Eigen::Index begin, Eigen::Index end) {
     BoundingBox box;
     for (Eigen::Index p = begin; p < end; ++p)
-      for (const auto& corner : panels[static_cast<size_t>(permutation_[size_t(p)])].corners)
-        box.extend(corner);
+      for (int k = 0; k < corners_per_element; ++k)
+        box.extend(corners.row(corners_per_element * permutation_[size_t(p)] + k).transpose());
     return box;
   };
   clusters_.push_back({0, n, box_of(0, n), -1});
@@ -29,8 +44,7 @@ ClusterTree::ClusterTree(const std::vector<Panel>& panels, Eigen::Index leaf_siz
     const Eigen::Index middle = parent.begin + parent.size() / 2;
     std::nth_element(permutation_.begin() + parent.begin, permutation_.begin() + middle,
                      permutation_.begin() + parent.end, [&](Eigen::Index x, Eigen::Index y) {
-                       const double cx = panels[size_t(x)].centroid(axis);
-                       const double cy = panels[size_t(y)].centroid(axis);
+                       const double cx = centres(x, axis), cy = centres(y, axis);
                        return cx < cy || (cx == cy && x < y);  // total order: deterministic
                      });
     clusters_[c].first_child = static_cast<int>(clusters_.size());

@@ -1,6 +1,7 @@
 #pragma once
-// Binary cluster tree over the panels of a mesh: the index sets the hierarchical matrix
-// (bem/hierarchical/hierarchical_matrix.hpp) and the near-field searches are organised by.
+// Binary cluster tree over the panels of a mesh (or over target points): the index sets the
+// hierarchical matrix (bem/hierarchical/hierarchical_matrix.hpp) and the near-field
+// searches are organised by.
 //
 // Construction: the root holds every panel; a cluster with more than `leaf_size` panels is
 // split at the median of its panels' centroids along the longest side of its bounding box,
@@ -53,7 +54,11 @@ class ClusterTree {
   /// the per-block overhead of the H-matrix product does not dominate.
   static constexpr Eigen::Index kDefaultLeafSize = 32;
 
+  /// Over panels: boxes around their corners, split by centroids.
   ClusterTree(const std::vector<Panel>& panels, Eigen::Index leaf_size = kDefaultLeafSize);
+  /// Over points (#P×3): boxes around the points.
+  ClusterTree(const Eigen::Ref<const Eigen::MatrixX3d>& points,
+              Eigen::Index leaf_size = kDefaultLeafSize);
 
   const std::vector<Cluster>& clusters() const { return clusters_; }
   const Cluster& root() const { return clusters_.front(); }
@@ -67,6 +72,11 @@ class ClusterTree {
   std::vector<int> clusters_up_to(Eigen::Index max_size) const;
 
  private:
+  /// The construction for elements with the given centres (split coordinates) and the
+  /// corners their boxes must hold (corners_per_element consecutive rows each).
+  void build(const Eigen::MatrixX3d& centres, const Eigen::MatrixX3d& corners,
+             int corners_per_element, Eigen::Index leaf_size);
+
   std::vector<Cluster> clusters_;
   std::vector<Eigen::Index> permutation_;
 };

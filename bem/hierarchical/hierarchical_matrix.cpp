@@ -7,20 +7,31 @@
 
 #include "core/cancellation.hpp"
 
+#include "core/assert.hpp"
+
 namespace bemshape::bem {
 
 HierarchicalMatrix::HierarchicalMatrix(const ClusterTree& tree,
                                        const OperatorBlockGenerator& generator,
                                        const HierarchicalMatrixOptions& options,
                                        const ProgressCallback& progress)
-    : rows_(tree.root().size()), densities_(generator.densities()) {
-  const BlockPartition partition = partition_blocks(tree, options.eta);
-  const int g = densities_;
+    : HierarchicalMatrix(tree, tree, generator, options, progress) {}
+
+HierarchicalMatrix::HierarchicalMatrix(const ClusterTree& row_tree, const ClusterTree& col_tree,
+                                       const OperatorBlockGenerator& generator,
+                                       const HierarchicalMatrixOptions& options,
+                                       const ProgressCallback& progress)
+    : rows_(row_tree.root().size()),
+      cols_(col_tree.root().size()),
+      densities_(generator.densities()),
+      outputs_(generator.outputs()) {
+  const BlockPartition partition = partition_blocks(row_tree, col_tree, options.eta);
+  const int g = densities_, o = outputs_;
   blocks_.reserve(partition.admissible.size() + partition.dense.size());
   for (const auto* list : {&partition.dense, &partition.admissible})
     for (const BlockIndex& b : *list) {
-      const Cluster& t = tree.cluster(b.rows);
-      const Cluster& s = tree.cluster(b.cols);
+      const Cluster& t = row_tree.cluster(b.rows);
+      const Cluster& s = col_tree.cluster(b.cols);
       Block block;
       block.row_begin = t.begin;
       block.row_end = t.end;
@@ -45,22 +56,23 @@ HierarchicalMatrix::HierarchicalMatrix(const ClusterTree& tree,
     const Eigen::Index m = b.row_end - b.row_begin, n = b.col_end - b.col_begin;
     bool stored = false;
     if (b.is_low_rank) {
-      // ACA on the m × g·n block; a rank at which U and V hold as many entries as the block
+      // ACA on the o·m × g·n block; a rank at which U and V hold as many entries as the block
       // itself gains nothing, so the block is then computed densely.
-      const Eigen::Index max_rank = std::max<Eigen::Index>(1, (m * g * n) / (m + g * n));
-      Eigen::MatrixXd column_pair(m, g);
-      Eigen::MatrixXd row_block(1, g * n);
+      const Eigen::Index max_rank = std::max<Eigen::Index>(1, (o * m * g * n) / (o * m + g * n));
+      Eigen::MatrixXd column_block(o * m, g);
+      Eigen::MatrixXd row_block(o, g * n);
       auto aca = adaptive_cross_approximation(
-          m, g * n,
+          o * m, g * n,
           [&](Eigen::Index i, Eigen::Ref<Eigen::VectorXd> row) {
-            generator.fill(b.row_begin + i, b.row_begin + i + 1, b.col_begin, b.col_end, row_block);
-            row = row_block.row(0).transpose();
+            const Eigen::Index r = i % m;
+            generator.fill(b.row_begin + r, b.row_begin + r + 1, b.col_begin, b.col_end, row_block);
+            row = row_block.row(i / m).transpose();
           },
           [&](Eigen::Index j, Eigen::Ref<Eigen::VectorXd> column) {
             const Eigen::Index c = j % n, d = j / n;
             generator.fill(b.row_begin, b.row_end, b.col_begin + c, b.col_begin + c + 1,
-                           column_pair);
-            column = column_pair.col(d);
+                           column_block);
+            column = column_block.col(d);
           },
           options.aca_tolerance, max_rank);
       if (aca) {
@@ -71,7 +83,7 @@ HierarchicalMatrix::HierarchicalMatrix(const ClusterTree& tree,
       }
     }
     if (!stored) {
-      b.dense.resize(m, g * n);
+      b.dense.resize(o * m, g * n);
       generator.fill(b.row_begin, b.row_end, b.col_begin, b.col_end, b.dense);
     }
     const std::size_t finished = ++done;
@@ -81,7 +93,7 @@ HierarchicalMatrix::HierarchicalMatrix(const ClusterTree& tree,
     }
   }
   throw_if_cancelled();
-  stats_.full_entries = std::uint64_t(rows_) * std::uint64_t(g) * std::uint64_t(rows_);
+  stats_.full_entries = std::uint64_t(o) * std::uint64_t(rows_) * std::uint64_t(g) * std::uint64_t(cols_);
   for (const Block& b : blocks_) {
     if (b.is_low_rank) {
       ++stats_.admissible_blocks;
@@ -103,29 +115,32 @@ Eigen::VectorXd HierarchicalMatrix::gather(const Eigen::Ref<const Eigen::MatrixX
 }
 
 void HierarchicalMatrix::multiply_add(const Eigen::Ref<const Eigen::MatrixXd>& x,
-                                      Eigen::Ref<Eigen::VectorXd> y) const {
+                                      Eigen::Ref<Eigen::MatrixXd> y) const {
   const int threads = omp_get_max_threads();
-  std::vector<Eigen::VectorXd> partial(static_cast<size_t>(threads));
+  std::vector<Eigen::MatrixXd> partial(static_cast<size_t>(threads));
 #pragma omp parallel num_threads(threads)
   {
-    Eigen::VectorXd& mine = partial[static_cast<size_t>(omp_get_thread_num())];
-    mine = Eigen::VectorXd::Zero(rows_);
+    Eigen::MatrixXd& mine = partial[static_cast<size_t>(omp_get_thread_num())];
+    mine = Eigen::MatrixXd::Zero(rows_, outputs_);
+    Eigen::VectorXd product;
 #pragma omp for schedule(static, 1)
     for (std::size_t k = 0; k < blocks_.size(); ++k) {
       const Block& b = blocks_[k];
       const Eigen::VectorXd xs = gather(x, b);
       const Eigen::Index m = b.row_end - b.row_begin;
       if (b.is_low_rank)
-        mine.segment(b.row_begin, m).noalias() += b.low_rank.U * (b.low_rank.V.transpose() * xs);
+        product.noalias() = b.low_rank.U * (b.low_rank.V.transpose() * xs);
       else
-        mine.segment(b.row_begin, m).noalias() += b.dense * xs;
+        product.noalias() = b.dense * xs;
+      for (int o = 0; o < outputs_; ++o) mine.col(o).segment(b.row_begin, m) += product.segment(o * m, m);
     }
   }
-  for (const Eigen::VectorXd& p : partial) y += p;
+  for (const Eigen::MatrixXd& p : partial) y += p;
 }
 
 std::vector<Eigen::MatrixXd> HierarchicalMatrix::diagonal_blocks(
     const std::vector<std::pair<Eigen::Index, Eigen::Index>>& ranges) const {
+  BEMSHAPE_ASSERT(outputs_ == 1 && rows_ == cols_, "diagonal blocks of a square operator");
   // Which blocks meet which diagonal block: the ranges are sorted, so a binary search finds
   // the first range a block's rows reach.
   std::vector<std::vector<std::size_t>> meeting(ranges.size());

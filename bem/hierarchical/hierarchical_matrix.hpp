@@ -24,13 +24,15 @@
 
 namespace bemshape::bem {
 
-/// Entries of the operator, in tree order: out(r, d·|σ| + c) = A_d(τ_begin + r, σ_begin + c)
-/// for the rows τ = [row_begin, row_end) and the columns σ = [col_begin, col_end); `out` is
-/// |τ| × g·|σ|.
+/// Entries of the operator, in tree order: out(o·|τ| + r, d·|σ| + c) = A_{o,d}(τ_begin + r,
+/// σ_begin + c) for the row elements τ = [row_begin, row_end), the column elements σ =
+/// [col_begin, col_end), output o < outputs() (e.g. a potential and its gradient at a target
+/// point) and density d < densities(); `out` is outputs()·|τ| × densities()·|σ|.
 class OperatorBlockGenerator {
  public:
   virtual ~OperatorBlockGenerator() = default;
   virtual int densities() const = 0;
+  virtual int outputs() const { return 1; }
   virtual void fill(Eigen::Index row_begin, Eigen::Index row_end, Eigen::Index col_begin,
                     Eigen::Index col_end, Eigen::Ref<Eigen::MatrixXd> out) const = 0;
 };
@@ -59,16 +61,24 @@ struct HierarchicalMatrixStats {
 
 class HierarchicalMatrix {
  public:
+  /// A square operator on the elements of `tree`.
   HierarchicalMatrix(const ClusterTree& tree, const OperatorBlockGenerator& generator,
+                     const HierarchicalMatrixOptions& options = {},
+                     const ProgressCallback& progress = {});
+  /// An operator from the elements of `col_tree` to those of `row_tree`.
+  HierarchicalMatrix(const ClusterTree& row_tree, const ClusterTree& col_tree,
+                     const OperatorBlockGenerator& generator,
                      const HierarchicalMatrixOptions& options = {},
                      const ProgressCallback& progress = {});
 
   Eigen::Index rows() const { return rows_; }
   int densities() const { return densities_; }
+  int outputs() const { return outputs_; }
   const HierarchicalMatrixStats& stats() const { return stats_; }
 
-  /// y += A x with x: N×g (column d = density d), y: N, both in tree order.
-  void multiply_add(const Eigen::Ref<const Eigen::MatrixXd>& x, Eigen::Ref<Eigen::VectorXd> y) const;
+  /// y += A x with x: #cols×g (column d = density d), y: #rows×o (column o = output o), both
+  /// in tree order.
+  void multiply_add(const Eigen::Ref<const Eigen::MatrixXd>& x, Eigen::Ref<Eigen::MatrixXd> y) const;
 
   /// The diagonal blocks A_d(C, C) of the index ranges C = [begin, end) in `ranges` (sorted,
   /// disjoint), low-rank blocks expanded: result[t](r, d·|C| + c) = A_d(begin + r, begin + c).
@@ -79,14 +89,14 @@ class HierarchicalMatrix {
  private:
   struct Block {
     Eigen::Index row_begin = 0, row_end = 0, col_begin = 0, col_end = 0;
-    Eigen::MatrixXd dense;  ///< |τ| × g|σ|, empty for a low-rank block
-    LowRankBlock low_rank;  ///< U: |τ|×k, V: g|σ|×k
+    Eigen::MatrixXd dense;  ///< o|τ| × g|σ|, empty for a low-rank block
+    LowRankBlock low_rank;  ///< U: o|τ|×k, V: g|σ|×k
     bool is_low_rank = false;
   };
   Eigen::VectorXd gather(const Eigen::Ref<const Eigen::MatrixXd>& x, const Block& b) const;
 
-  Eigen::Index rows_ = 0;
-  int densities_ = 1;
+  Eigen::Index rows_ = 0, cols_ = 0;
+  int densities_ = 1, outputs_ = 1;
   std::vector<Block> blocks_;
   HierarchicalMatrixStats stats_;
 };

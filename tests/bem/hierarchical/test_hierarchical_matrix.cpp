@@ -62,3 +62,52 @@ TEST_CASE("H-matrix of [−K0 | V0] on a box (zero double layer between coplanar
   check_against_dense(geometry::make_box(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(2, 1.5, 0.3), 0.1),
                       1e-8);
 }
+
+namespace {
+
+/// A_{o,d}(i, j) = (1 + o + 2d)/(|x_i − y_j| + 0.05) between two point sets (tree order).
+class TwoSetKernel final : public bem::OperatorBlockGenerator {
+ public:
+  TwoSetKernel(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& y, const bem::ClusterTree& tx,
+               const bem::ClusterTree& ty)
+      : x_(x), y_(y), px_(tx.permutation()), py_(ty.permutation()) {}
+  int densities() const override { return 2; }
+  int outputs() const override { return 3; }
+  void fill(Eigen::Index r0, Eigen::Index r1, Eigen::Index c0, Eigen::Index c1,
+            Eigen::Ref<Eigen::MatrixXd> out) const override {
+    const Eigen::Index m = r1 - r0, n = c1 - c0;
+    for (Eigen::Index r = 0; r < m; ++r)
+      for (Eigen::Index c = 0; c < n; ++c) {
+        const double k = 1.0 / ((x_.row(px_[size_t(r0 + r)]) - y_.row(py_[size_t(c0 + c)])).norm() + 0.05);
+        for (int o = 0; o < 3; ++o)
+          for (int d = 0; d < 2; ++d) out(o * m + r, d * n + c) = (1 + o + 2 * d) * k;
+      }
+  }
+
+ private:
+  const Eigen::MatrixX3d &x_, &y_;
+  const std::vector<Eigen::Index>&px_, &py_;
+};
+
+}  // namespace
+
+TEST_CASE("rectangular H-matrix (two trees, three outputs, two densities) = dense product") {
+  std::mt19937 rng(8);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  Eigen::MatrixX3d x(900, 3), y(700, 3);
+  for (Eigen::Index i = 0; i < x.rows(); ++i) x.row(i) << 2 * u(rng), u(rng), 0.2 * u(rng);
+  for (Eigen::Index j = 0; j < y.rows(); ++j) y.row(j) << 2 * u(rng), u(rng), 0.5 + 0.2 * u(rng);
+  const bem::ClusterTree tx(x, 24), ty(y, 24);
+  const TwoSetKernel kernel(x, y, tx, ty);
+  const bem::HierarchicalMatrix h(tx, ty, kernel, {1e-8, 1.0});
+  CHECK(h.stats().admissible_blocks > 0);
+  CHECK(h.stats().full_entries == 3ull * 900 * 2 * 700);
+  Eigen::MatrixXd dense(3 * 900, 2 * 700);
+  kernel.fill(0, 900, 0, 700, dense);
+  Eigen::MatrixXd v(700, 2);
+  for (double& e : v.reshaped()) e = u(rng) - 0.5;
+  Eigen::MatrixXd out = Eigen::MatrixXd::Zero(900, 3);
+  h.multiply_add(v, out);
+  const Eigen::VectorXd exact = dense * v.reshaped();  // rows o·900 + i
+  CHECK((out.reshaped() - exact).norm() < 1e-7 * exact.norm());
+}
