@@ -20,6 +20,7 @@
 #include "apps/output/atomic_file.hpp"
 #include "apps/progress_display.hpp"
 #include "apps/report_text.hpp"
+#include "apps/run_limits.hpp"
 #include "apps/solver_mesh_options.hpp"
 #include "apps/stage_times.hpp"
 #include "apps/text_histogram.hpp"
@@ -425,6 +426,7 @@ void register_compare_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--report", options->report_path, "Also write the report as JSON to this file");
   cmd->add_option("--threads", options->threads, "Number of threads (default: all cores)");
   cmd->add_flag("--quiet", options->quiet, "No progress on stderr");
+  add_timeout_option(*cmd);
   cmd->callback([options, &exit_code] { run_compare(*options, exit_code); });
 }
 

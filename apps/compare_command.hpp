@@ -1,11 +1,11 @@
 #pragma once
 // `bemshape compare INPUT --cell SIZE [--h0 L] [--a 0.2] [--max-edge E] [--sharp-angle A]
 //  [--solver auto|dense|hmatrix] [--tolerance T] [--max-probes N] [--report OUT.json]
-//  [--threads N] [--quiet]`: solves the shape-feature PDE of one closed surface mesh twice,
-// by the boundary element method (the `thickness` and `features` path: refined solver mesh,
-// transmission solve, representation formula at interior points) and by the voxel
-// finite-element method (the `fem` path: the input mesh voxelised with cells of side SIZE),
-// and compares f_h and h_p at interior probe points.
+//  [--threads N] [--quiet] [--timeout SECONDS]`: solves the shape-feature PDE of one closed
+// surface mesh twice, by the boundary element method (the `thickness` and `features` path:
+// refined solver mesh, transmission solve, representation formula at interior points) and
+// by the voxel finite-element method (the `fem` path: the input mesh voxelised with cells of
+// side SIZE), and compares f_h and h_p at interior probe points.
 //
 // Probes: centres of the FEM's solid cells (χ ≥ ½) whose distance to the input surface is at
 // least kProbeDepthCells·SIZE, where both solutions are smooth and the FEM's staircase
