@@ -43,20 +43,25 @@ PotentialField represent(const geometry::SurfaceMesh& mesh, const std::vector<Pa
     double winding = 0.0;
     Eigen::RowVector3d s_in = Eigen::RowVector3d::Zero(), s_out = Eigen::RowVector3d::Zero();
     Eigen::Matrix3d g_in = Eigen::Matrix3d::Zero(), g_out = Eigen::Matrix3d::Zero();
+    // The interior (Laplace) sums first: they give the winding number too, and the exterior
+    // (Yukawa) sums are needed only where it says the point is outside.
     for (Eigen::Index k = 0; k < nf; ++k) {
-      const Panel& panel = panels[static_cast<size_t>(k)];
-      const PanelIntegrals l = integrate_panel(laplace, panel, x, true);
-      const PanelIntegrals y = integrate_panel(yukawa, panel, x, true);
+      const PanelIntegrals l = integrate_panel(laplace, panels[static_cast<size_t>(k)], x, true);
       winding -= l.double_layer;
-      const Eigen::RowVector3d q = solution.q.row(k), phi = solution.phi.row(k),
-                               qo = q_out.row(k);
+      const Eigen::RowVector3d q = solution.q.row(k), phi = solution.phi.row(k);
       s_in += l.single_layer * q - l.double_layer * phi;
-      s_out += -y.single_layer * qo + y.double_layer * phi;
       // g(i, j) = ∂s_i/∂x_j: outer products of the densities with the kernel gradients.
       g_in += q.transpose() * l.single_layer_gradient.transpose() -
               phi.transpose() * l.double_layer_gradient.transpose();
-      g_out += -qo.transpose() * y.single_layer_gradient.transpose() +
-               phi.transpose() * y.double_layer_gradient.transpose();
+    }
+    if (!(winding > 0.5)) {
+      for (Eigen::Index k = 0; k < nf; ++k) {
+        const PanelIntegrals y = integrate_panel(yukawa, panels[static_cast<size_t>(k)], x, true);
+        const Eigen::RowVector3d phi = solution.phi.row(k), qo = q_out.row(k);
+        s_out += -y.single_layer * qo + y.double_layer * phi;
+        g_out += -qo.transpose() * y.single_layer_gradient.transpose() +
+                 phi.transpose() * y.double_layer_gradient.transpose();
+      }
     }
     const bool inside = winding > 0.5;
     field.winding(p) = winding;
