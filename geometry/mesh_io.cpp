@@ -272,6 +272,87 @@ void lint_obj(const fs::path& path, std::string_view text) {
   });
 }
 
+/// Checks a plain ASCII OFF file ("OFF", then NV NF NE, NV vertex lines, NF face lines)
+/// against its own header before OpenMesh reads it: OpenMesh's reader trusts the counts and,
+/// on a file shorter than announced, returns vertices and indices it never read (found by
+/// fuzz/fuzz_off). Every coordinate must be a finite number and every index in range.
+/// Variants with colours or normals per vertex (COFF, NOFF, ...) and binary OFF are left to
+/// OpenMesh.
+void lint_off(const fs::path& path, std::string_view text) {
+  std::vector<std::vector<std::string_view>> lines;  // non-empty lines, comments removed
+  for_each_line(text, [&](std::size_t, const std::vector<std::string_view>& line) {
+    std::vector<std::string_view> kept;
+    for (const std::string_view t : line) {
+      if (t.front() == '#') break;
+      kept.push_back(t);
+    }
+    if (!kept.empty()) lines.push_back(std::move(kept));
+  });
+  if (lines.empty() || lines[0][0] != "OFF" || (lines[0].size() > 1 && lines[0][1] == "BINARY"))
+    return;
+  const auto whole_number = [](std::string_view t, std::size_t& value) {
+    const char* end = t.data() + t.size();
+    const auto result = std::from_chars(t.data(), end, value);
+    return result.ec == std::errc() && result.ptr == end;
+  };
+  // The counts follow "OFF" on its line or on the next one.
+  std::size_t line = lines[0].size() > 1 ? 0 : 1;
+  const std::size_t first = line == 0 ? 1 : 0;
+  std::size_t nv = 0, nf = 0;
+  if (line >= lines.size() || lines[line].size() < first + 2 ||
+      !whole_number(lines[line][first], nv) || !whole_number(lines[line][first + 1], nf))
+    fail(path, "OFF header: expected the vertex, face and edge counts after 'OFF'");
+  ++line;
+  if (nv > lines.size() - line || nf > lines.size() - line - nv)
+    fail(path, "OFF header announces " + std::to_string(nv) + " vertices and " +
+                   std::to_string(nf) + " faces but the file has only " +
+                   std::to_string(lines.size() - line) +
+                   " lines after it: the file is truncated or corrupt");
+  for (std::size_t v = 0; v < nv; ++v, ++line) {
+    if (lines[line].size() < 3)
+      fail(path, "vertex " + std::to_string(v) + ": needs 3 coordinates, found " +
+                     std::to_string(lines[line].size()));
+    for (std::size_t k = 0; k < 3; ++k) {
+      double value;
+      std::string why;
+      if (!parse_coordinate(lines[line][k], value, why))
+        fail(path, "vertex " + std::to_string(v) + ": " + why);
+    }
+  }
+  for (std::size_t f = 0; f < nf; ++f, ++line) {
+    const auto& tokens = lines[line];
+    std::size_t corners = 0;
+    if (!whole_number(tokens[0], corners) || corners + 1 > tokens.size())
+      fail(path, "face " + std::to_string(f) + ": '" + std::string(tokens[0]) +
+                     "' is not the number of corners listed on its line: the file is corrupt");
+    for (std::size_t k = 1; k <= corners; ++k) {
+      std::size_t index = 0;
+      if (!whole_number(tokens[k], index) || index >= nv)
+        fail(path, "face " + std::to_string(f) + " refers to vertex '" + std::string(tokens[k]) +
+                       "' but the file has " + std::to_string(nv) +
+                       " vertices (numbered from 0): the file is corrupt");
+    }
+  }
+}
+
+/// Checks that a PLY file starts with "ply" and ends its header with an "end_header" line:
+/// OpenMesh's PLY reader loops forever on a header that never ends (found by
+/// fuzz/fuzz_ply).
+void lint_ply(const fs::path& path, std::string_view text) {
+  if (text.substr(0, 3) != "ply")
+    fail(path, "not a PLY file: it does not start with 'ply'");
+  std::size_t at = 0;
+  while ((at = text.find("end_header", at)) != std::string_view::npos) {
+    const bool line_start = text[at - 1] == '\n';
+    const std::size_t after = at + 10;
+    const bool line_end =
+        after == text.size() || text[after] == '\n' || text[after] == '\r' || text[after] == ' ';
+    if (line_start && line_end) return;
+    at = after;
+  }
+  fail(path, "the PLY header has no 'end_header' line: the file is truncated or corrupt");
+}
+
 /// Decides binary vs ASCII STL the way OpenMesh does (a binary file's size is exactly
 /// 84 + 50·n), but refuses a size mismatch up front instead of reading n triangles.
 bool stl_is_binary(const fs::path& path, std::string_view text) {
@@ -363,6 +444,10 @@ TriangleSoup read_triangle_soup(const fs::path& path) {
     }
   } else if (soup.format == "OBJ") {
     lint_obj(path, text);
+  } else if (soup.format == "OFF") {
+    lint_off(path, text);
+  } else if (soup.format == "PLY") {
+    lint_ply(path, text);
   }
 
   SoupImporter importer;

@@ -179,6 +179,18 @@ PreparedMesh inspect_triangle_soup(const TriangleSoup& soup, const std::string& 
                 counted(cleanup.zero_area_left, "zero-area face", "zero-area faces") +
                     " that cannot be removed",
                 "they lie on a hole or a non-manifold edge; fix the surface in CAD");
+  // Every face collapsed (e.g. all corners welded together): nothing is left to bound a
+  // solid, and an empty mesh would pass every rule above (found by fuzz/fuzz_stl).
+  if (consistent.faces.rows() == 0)
+    add_problem(report, Status::refused, static_cast<std::size_t>(weld.faces.rows()),
+                before.collapsed_faces.first,
+                "no face left after removing " +
+                    counted(static_cast<std::size_t>(weld.faces.rows()), "collapsed face",
+                            "collapsed faces"),
+                "every face has coinciding corners at the weld tolerance " +
+                    format_number(weld.tolerance) +
+                    "; check the file's coordinates (a few far-away vertices make the "
+                    "tolerance, a fraction of the bounding box, too coarse)");
 
   throw_if_cancelled();
   report_progress(progress, "self-intersections", 0.4);
