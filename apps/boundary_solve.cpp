@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <new>
 #include <cstdio>
 #include <sstream>
 
@@ -89,7 +90,14 @@ BoundarySolveRun prepare_and_solve(const BoundarySolveSetup& setup, StageTimes& 
     // ε two digits below the Krylov tolerance (bem/hmatrix_transmission_solver.hpp).
     options.aca_tolerance = 1e-2 * setup.solver.tolerance;
     options.max_memory_bytes = setup.max_memory_bytes;
-    run.solution = bem::solve_transmission_hmatrix(run.solver_mesh, parameters, options, progress);
+    try {
+      run.solution = bem::solve_transmission_hmatrix(run.solver_mesh, parameters, options, progress);
+    } catch (const std::bad_alloc&) {
+      // The estimate checked before assembly was low for this part (ranks, near field).
+      throw ResourceError(setup.input + ": the hierarchical-matrix BEM solver ran out of memory for " +
+                          std::to_string(faces) + " solver faces (edge " +
+                          number_text(run.max_edge, 3) + "); use a coarser mesh (larger --max-edge)");
+    }
   } else {
     const std::uint64_t budget = dense_budget_bytes(setup.max_memory_bytes);
     if (budget > 0 && bem::dense_solver_memory_bytes(faces) > budget)

@@ -2,12 +2,15 @@
 
 #include <algorithm>
 #include <atomic>
+#include <new>
+#include <string>
 
 #include <omp.h>
 
 #include "core/cancellation.hpp"
 
 #include "core/assert.hpp"
+#include "core/errors.hpp"
 
 namespace bemshape::bem {
 
@@ -47,44 +50,49 @@ HierarchicalMatrix::HierarchicalMatrix(const ClusterTree& row_tree, const Cluste
   });
 
   std::atomic<std::size_t> done{0};
+  std::atomic<bool> out_of_memory{false};
   const std::size_t total = blocks_.size();
 #pragma omp parallel for schedule(dynamic, 1)
   for (std::size_t k = 0; k < total; ++k) {
     // A cancelled run skips the remaining blocks (an exception cannot leave the loop).
-    if (cancellation_requested()) continue;
-    Block& b = blocks_[k];
-    const Eigen::Index m = b.row_end - b.row_begin, n = b.col_end - b.col_begin;
-    bool stored = false;
-    if (b.is_low_rank) {
-      // ACA on the o·m × g·n block; a rank at which U and V hold as many entries as the block
-      // itself gains nothing, so the block is then computed densely.
-      const Eigen::Index max_rank = std::max<Eigen::Index>(1, (o * m * g * n) / (o * m + g * n));
-      Eigen::MatrixXd column_block(o * m, g);
-      Eigen::MatrixXd row_block(o, g * n);
-      auto aca = adaptive_cross_approximation(
-          o * m, g * n,
-          [&](Eigen::Index i, Eigen::Ref<Eigen::VectorXd> row) {
-            const Eigen::Index r = i % m;
-            generator.fill(b.row_begin + r, b.row_begin + r + 1, b.col_begin, b.col_end, row_block);
-            row = row_block.row(i / m).transpose();
-          },
-          [&](Eigen::Index j, Eigen::Ref<Eigen::VectorXd> column) {
-            const Eigen::Index c = j % n, d = j / n;
-            generator.fill(b.row_begin, b.row_end, b.col_begin + c, b.col_begin + c + 1,
-                           column_block);
-            column = column_block.col(d);
-          },
-          options.aca_tolerance, max_rank);
-      if (aca) {
-        b.low_rank = std::move(*aca);
-        stored = true;
-      } else {
-        b.is_low_rank = false;
+    if (cancellation_requested() || out_of_memory) continue;
+    try {
+      Block& b = blocks_[k];
+      const Eigen::Index m = b.row_end - b.row_begin, n = b.col_end - b.col_begin;
+      bool stored = false;
+      if (b.is_low_rank) {
+        // ACA on the o·m × g·n block; a rank at which U and V hold as many entries as the block
+        // itself gains nothing, so the block is then computed densely.
+        const Eigen::Index max_rank = std::max<Eigen::Index>(1, (o * m * g * n) / (o * m + g * n));
+        Eigen::MatrixXd column_block(o * m, g);
+        Eigen::MatrixXd row_block(o, g * n);
+        auto aca = adaptive_cross_approximation(
+            o * m, g * n,
+            [&](Eigen::Index i, Eigen::Ref<Eigen::VectorXd> row) {
+              const Eigen::Index r = i % m;
+              generator.fill(b.row_begin + r, b.row_begin + r + 1, b.col_begin, b.col_end, row_block);
+              row = row_block.row(i / m).transpose();
+            },
+            [&](Eigen::Index j, Eigen::Ref<Eigen::VectorXd> column) {
+              const Eigen::Index c = j % n, d = j / n;
+              generator.fill(b.row_begin, b.row_end, b.col_begin + c, b.col_begin + c + 1,
+                             column_block);
+              column = column_block.col(d);
+            },
+            options.aca_tolerance, max_rank);
+        if (aca) {
+          b.low_rank = std::move(*aca);
+          stored = true;
+        } else {
+          b.is_low_rank = false;
+        }
       }
-    }
-    if (!stored) {
-      b.dense.resize(o * m, g * n);
-      generator.fill(b.row_begin, b.row_end, b.col_begin, b.col_end, b.dense);
+      if (!stored) {
+        b.dense.resize(o * m, g * n);
+        generator.fill(b.row_begin, b.row_end, b.col_begin, b.col_end, b.dense);
+      }
+    } catch (const std::bad_alloc&) {
+      out_of_memory = true;  // reported after the loop: an exception cannot leave it
     }
     const std::size_t finished = ++done;
     if (progress && finished % 256 == 0) {
@@ -93,6 +101,10 @@ HierarchicalMatrix::HierarchicalMatrix(const ClusterTree& row_tree, const Cluste
     }
   }
   throw_if_cancelled();
+  if (out_of_memory)
+    throw ResourceError("the hierarchical matrix of " + std::to_string(rows_) + " x " +
+                        std::to_string(cols_) + " elements ran out of memory while assembling; "
+                        "use a coarser mesh (larger --max-edge)");
   stats_.full_entries = std::uint64_t(o) * std::uint64_t(rows_) * std::uint64_t(g) * std::uint64_t(cols_);
   for (const Block& b : blocks_) {
     if (b.is_low_rank) {

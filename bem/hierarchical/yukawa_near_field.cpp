@@ -1,11 +1,14 @@
 #include "bem/hierarchical/yukawa_near_field.hpp"
 
 #include <atomic>
+#include <new>
+#include <string>
 #include <cmath>
 #include <vector>
 
 #include "bem/galerkin_operators.hpp"
 #include "bem/yukawa_kernel.hpp"
+#include "core/errors.hpp"
 #include "core/cancellation.hpp"
 
 namespace bemshape::bem {
@@ -29,43 +32,48 @@ SparseRowMatrix assemble_yukawa_near_field(const std::vector<Panel>& panels,
   std::vector<std::vector<Eigen::Index>> columns(static_cast<size_t>(n));
   std::vector<std::vector<double>> values(static_cast<size_t>(n));
   std::atomic<Eigen::Index> rows_done{0};
+  std::atomic<bool> out_of_memory{false};
 #pragma omp parallel for schedule(dynamic, 16)
   for (Eigen::Index i = 0; i < n; ++i) {
     // A cancelled run skips the remaining rows (an exception cannot leave the parallel loop).
-    if (cancellation_requested()) continue;
-    const Panel& test = panels[size_t(perm[size_t(i)])];
-    BoundingBox box;
-    for (const auto& c : test.corners) box.extend(c);
-    std::vector<Eigen::Index> near;  // tree positions of the candidate trial panels
-    std::vector<int> stack{0};
-    while (!stack.empty()) {
-      const Cluster& cl = tree.cluster(stack.back());
-      stack.pop_back();
-      if (box.distance(cl.box) > reach) continue;
-      if (cl.is_leaf()) {
-        for (Eigen::Index j = cl.begin; j < cl.end; ++j) near.push_back(j);
-      } else {
-        stack.push_back(cl.first_child + 1);
-        stack.push_back(cl.first_child);
+    if (cancellation_requested() || out_of_memory) continue;
+    try {
+      const Panel& test = panels[size_t(perm[size_t(i)])];
+      BoundingBox box;
+      for (const auto& c : test.corners) box.extend(c);
+      std::vector<Eigen::Index> near;  // tree positions of the candidate trial panels
+      std::vector<int> stack{0};
+      while (!stack.empty()) {
+        const Cluster& cl = tree.cluster(stack.back());
+        stack.pop_back();
+        if (box.distance(cl.box) > reach) continue;
+        if (cl.is_leaf()) {
+          for (Eigen::Index j = cl.begin; j < cl.end; ++j) near.push_back(j);
+        } else {
+          stack.push_back(cl.first_child + 1);
+          stack.push_back(cl.first_child);
+        }
       }
-    }
-    std::sort(near.begin(), near.end());
-    auto& cols = columns[size_t(i)];
-    auto& vals = values[size_t(i)];
-    std::vector<std::pair<Eigen::Index, double>> single;
-    for (const Eigen::Index j : near) {
-      const Panel& trial = panels[size_t(perm[size_t(j)])];
-      if ((test.centroid - trial.centroid).norm() - test.radius - trial.radius > cutoff) continue;
-      const auto e = yukawa.entry(perm[size_t(i)], perm[size_t(j)]);
-      if (e.double_layer != 0.0) {
-        cols.push_back(j);
-        vals.push_back(-e.double_layer);
+      std::sort(near.begin(), near.end());
+      auto& cols = columns[size_t(i)];
+      auto& vals = values[size_t(i)];
+      std::vector<std::pair<Eigen::Index, double>> single;
+      for (const Eigen::Index j : near) {
+        const Panel& trial = panels[size_t(perm[size_t(j)])];
+        if ((test.centroid - trial.centroid).norm() - test.radius - trial.radius > cutoff) continue;
+        const auto e = yukawa.entry(perm[size_t(i)], perm[size_t(j)]);
+        if (e.double_layer != 0.0) {
+          cols.push_back(j);
+          vals.push_back(-e.double_layer);
+        }
+        if (e.single_layer != 0.0) single.emplace_back(n + j, e.single_layer);
       }
-      if (e.single_layer != 0.0) single.emplace_back(n + j, e.single_layer);
-    }
-    for (const auto& [c, v] : single) {
-      cols.push_back(c);
-      vals.push_back(v);
+      for (const auto& [c, v] : single) {
+        cols.push_back(c);
+        vals.push_back(v);
+      }
+    } catch (const std::bad_alloc&) {
+      out_of_memory = true;  // reported after the loop: an exception cannot leave it
     }
     const Eigen::Index done = ++rows_done;
     if (progress && done % 1024 == 0) {
@@ -74,6 +82,10 @@ SparseRowMatrix assemble_yukawa_near_field(const std::vector<Panel>& panels,
     }
   }
   throw_if_cancelled();
+  if (out_of_memory)
+    throw ResourceError("the exterior near field of " + std::to_string(n) +
+                        " faces ran out of memory while assembling; use a coarser mesh "
+                        "(larger --max-edge)");
   SparseRowMatrix y(n, 2 * n);
   Eigen::VectorX<Eigen::Index> counts(n);
   for (Eigen::Index i = 0; i < n; ++i) counts(i) = static_cast<Eigen::Index>(columns[size_t(i)].size());
