@@ -21,6 +21,7 @@
 #include <Eigen/Core>
 
 #include "apps/output/stl_writer.hpp"
+#include "fem/binary_image.hpp"
 #include "geometry/surface_mesh.hpp"
 
 namespace bemshape::testing {
@@ -31,6 +32,7 @@ struct Run {
   int exit_code = -1;
   std::string out, err;
   double seconds = 0.0;
+  std::string first_error_line() const { return err.substr(0, err.find('\n')); }
 };
 
 inline std::string slurp(const fs::path& path) {
@@ -87,6 +89,21 @@ inline std::string write_mesh(const geometry::SurfaceMesh& mesh, const std::stri
   const std::string path = scratch(name);
   output::write_binary_stl(path, mesh.vertices(), mesh.faces());
   return path;
+}
+
+/// Writes a 40×40 PNG with an L-shaped solid (30×30 pixels, arms 10 wide) to the scratch
+/// folder and returns the path: `bemshape fem` on it takes a fraction of a second and writes a
+/// .vti of about 60 kB.
+inline std::string write_l_shape_png(const std::string& name) {
+  fem::BinaryImage<2> image;
+  image.size = {40, 40};
+  image.solid.assign(1600, 0);
+  for (int y = 5; y < 35; ++y)
+    for (int x = 5; x < 35; ++x)
+      if (x < 15 || y < 15) image.solid[static_cast<std::size_t>(y * 40 + x)] = 1;
+  const std::string png = scratch(name);
+  fem::write_binary_png(png, image);
+  return png;
 }
 
 /// A CSV file: its header and its rows as numbers.

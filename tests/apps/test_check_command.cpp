@@ -1,63 +1,22 @@
 // Runs the real `bemshape` executable (path compiled in as BEMSHAPE_EXECUTABLE) on the
 // bad-input corpus and the sample meshes, checking exit codes, the first line of stderr and
 // run time.
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <catch2/catch.hpp>
-#include <chrono>
-#include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 #include <string>
 
+#include "tests/apps/bemshape_runner.hpp"
+
 namespace fs = std::filesystem;
+using namespace bemshape::testing;
 
 namespace {
 
 const std::string data = BEMSHAPE_TEST_DATA_DIR;
 
-struct Run {
-  int exit_code = -1;
-  std::string out, err;
-  double seconds = 0.0;
-  std::string first_error_line() const { return err.substr(0, err.find('\n')); }
-};
-
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-/// Runs `bemshape <arguments>` (arguments already shell-quoted).
-Run run(const std::string& arguments) {
-  const fs::path err_file =
-      fs::temp_directory_path() / ("bemshape_test_stderr_" + std::to_string(::getpid()) + ".txt");
-  const std::string command =
-      std::string("'") + BEMSHAPE_EXECUTABLE + "' " + arguments + " 2>'" + err_file.string() + "'";
-  Run r;
-  const auto start = std::chrono::steady_clock::now();
-  FILE* pipe = ::popen(command.c_str(), "r");
-  REQUIRE(pipe != nullptr);
-  char buffer[4096];
-  std::size_t n;
-  while ((n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0)
-    r.out.append(buffer, n);
-  const int status = ::pclose(pipe);
-  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  REQUIRE(WIFEXITED(status));  // no crash, no signal
-  r.exit_code = WEXITSTATUS(status);
-  r.err = slurp(err_file);
-  fs::remove(err_file);
-  return r;
-}
-
 Run check(const std::string& file) {
-  return run("check '" + file + "'");
+  return run_bemshape("check '" + file + "'");
 }
 
 /// Refused input: exit 2, first stderr line names the file and the problem, under a second.
@@ -144,7 +103,7 @@ TEST_CASE("an unreadable file is refused (skipped when running as root)") {
 
 TEST_CASE("check on a good mesh prints the report, --report writes it as JSON") {
   const fs::path json = fs::temp_directory_path() / "bemshape_test_report.json";
-  const Run r = run("check '" + data + "/meshes/plate_holes.STL' --report '" + json.string() + "'");
+  const Run r = run_bemshape("check '" + data + "/meshes/plate_holes.STL' --report '" + json.string() + "'");
   CHECK(r.exit_code == 0);
   CHECK(r.err.empty());
   for (const char* line : {"faces", "vertices", "shells", "cavities", "volume", "area",
@@ -161,20 +120,20 @@ TEST_CASE("check on a good mesh prints the report, --report writes it as JSON") 
 }
 
 TEST_CASE("usage: --help and --version exit 0, bad usage exits 2") {
-  const Run help = run("--help");
+  const Run help = run_bemshape("--help");
   CHECK(help.exit_code == 0);
   CHECK_THAT(help.out, Catch::Contains("check"));
-  const Run check_help = run("check --help");
+  const Run check_help = run_bemshape("check --help");
   CHECK(check_help.exit_code == 0);
   CHECK_THAT(check_help.out, Catch::Contains("units"));
   CHECK_THAT(check_help.out, Catch::Contains("--weld-tolerance"));
-  const Run version = run("--version");
+  const Run version = run_bemshape("--version");
   CHECK(version.exit_code == 0);
   CHECK_THAT(version.out, Catch::Contains("bemshape "));
   for (const char* args : {"", "check", "frobnicate", "check a.stl --no-such-option",
                            "check a.stl --weld-tolerance -1"}) {
     CAPTURE(args);
-    const Run r = run(args);
+    const Run r = run_bemshape(args);
     CHECK(r.exit_code == 2);
     CHECK_THAT(r.first_error_line(), Catch::StartsWith("bemshape: error: "));
   }

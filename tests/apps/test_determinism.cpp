@@ -6,7 +6,6 @@
 
 #include <catch2/catch.hpp>
 
-#include "fem/binary_image.hpp"
 #include "geometry/primitive_meshes.hpp"
 #include "tests/apps/bemshape_runner.hpp"
 
@@ -74,15 +73,7 @@ TEST_CASE("features --grid: same threads bit-identical, 1 vs 2 threads 1e-10") {
 }
 
 TEST_CASE("fem on a PNG: same threads give a bit-identical .vti") {
-  // An L of 30×30 pixels in a 40×40 image.
-  fem::BinaryImage<2> image;
-  image.size = {40, 40};
-  image.solid.assign(1600, 0);
-  for (int y = 5; y < 35; ++y)
-    for (int x = 5; x < 35; ++x)
-      if (x < 15 || y < 15) image.solid[static_cast<std::size_t>(y * 40 + x)] = 1;
-  const std::string png = scratch("determinism_l.png");
-  fem::write_binary_png(png, image);
+  const std::string png = write_l_shape_png("determinism_l.png");
   // fem has no --threads option: the thread count comes from OMP_NUM_THREADS.
   ::setenv("OMP_NUM_THREADS", "2", 1);
   const auto run = [&](const std::string& tag) {

@@ -10,7 +10,6 @@
 #include <catch2/catch.hpp>
 #include <cstdlib>
 
-#include "fem/binary_image.hpp"
 #include "geometry/primitive_meshes.hpp"
 #include "tests/apps/bemshape_runner.hpp"
 
@@ -41,19 +40,8 @@ struct TmpfsMount {
   }
 };
 
-/// A 40×40 PNG with an L-shaped solid: `bemshape fem` on it takes a fraction of a second
-/// and writes a .vti of about 60 kB.
-std::string l_shape_png() {
-  fem::BinaryImage<2> image;
-  image.size = {40, 40};
-  image.solid.assign(1600, 0);
-  for (int y = 5; y < 35; ++y)
-    for (int x = 5; x < 35; ++x)
-      if (x < 15 || y < 15) image.solid[static_cast<std::size_t>(y * 40 + x)] = 1;
-  const std::string png = scratch("fault_l.png");
-  fem::write_binary_png(png, image);
-  return png;
-}
+/// The L-shaped image of bemshape_runner.hpp.
+std::string l_shape_png() { return write_l_shape_png("fault_l.png"); }
 
 }  // namespace
 
