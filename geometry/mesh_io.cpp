@@ -9,16 +9,18 @@
 #include <array>
 #include <cctype>
 #include <cerrno>
-#include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <system_error>
 #include <vector>
 
 #include "core/errors.hpp"
+#include "geometry/detail/polygon_file_readers.hpp"
+#include "geometry/detail/text_scan.hpp"
 
 namespace bemshape::geometry {
 namespace {
@@ -32,9 +34,7 @@ using OpenMesh::VertexHandle;
 constexpr std::uint64_t kStlHeaderBytes = 84;
 constexpr std::uint64_t kStlTriangleBytes = 50;
 
-[[noreturn]] void fail(const fs::path& path, const std::string& what) {
-  throw InputError(path.string() + ": " + what);
-}
+using detail::fail;
 
 std::string lowercase(std::string s) {
   std::transform(s.begin(), s.end(), s.begin(),
@@ -42,14 +42,13 @@ std::string lowercase(std::string s) {
   return s;
 }
 
-/// Collects OpenMesh's vertices and faces without building any connectivity, so that
-/// non-manifold and inconsistently oriented faces survive to be reported.
+/// Collects the vertices and triangles of OpenMesh's STL reader without building any
+/// connectivity, so that non-manifold and inconsistently oriented faces survive to be
+/// reported.
 class SoupImporter final : public OpenMesh::IO::BaseImporter {
  public:
   std::vector<Eigen::Vector3d> points;
   std::vector<std::array<int, 3>> triangles;
-  std::size_t polygons_triangulated = 0;
-  std::size_t triangles_from_polygons = 0;
   std::size_t short_faces = 0;
   // First face corner that refers to a vertex the file does not have (-1: none).
   long long bad_index = -1;
@@ -77,12 +76,6 @@ class SoupImporter final : public OpenMesh::IO::BaseImporter {
     if (corners.size() < 3) {
       ++short_faces;
       return FaceHandle();
-    }
-    // Fan triangulation from the first corner: exact for convex planar polygons, which is
-    // what OBJ/OFF/PLY exporters write; it is reported so the user knows it happened.
-    if (corners.size() > 3) {
-      ++polygons_triangulated;
-      triangles_from_polygons += corners.size() - 2;
     }
     for (std::size_t k = 1; k + 1 < corners.size(); ++k)
       triangles.push_back({corners[0].idx(), corners[k].idx(), corners[k + 1].idx()});
@@ -168,83 +161,33 @@ std::string read_all(const fs::path& path) {
   return buffer.str();
 }
 
-/// Splits text into whitespace-separated tokens, one line at a time, calling
-/// visit(line_number, tokens).
-template <typename Visit>
-void for_each_line(std::string_view text, Visit&& visit) {
-  std::size_t line_number = 0, pos = 0;
-  std::vector<std::string_view> tokens;
-  while (pos < text.size()) {
-    std::size_t end = text.find('\n', pos);
-    if (end == std::string_view::npos)
-      end = text.size();
-    std::string_view line = text.substr(pos, end - pos);
-    ++line_number;
-    tokens.clear();
-    std::size_t i = 0;
-    while (i < line.size()) {
-      while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i])))
-        ++i;
-      std::size_t j = i;
-      while (j < line.size() && !std::isspace(static_cast<unsigned char>(line[j])))
-        ++j;
-      if (j > i)
-        tokens.push_back(line.substr(i, j - i));
-      i = j;
-    }
-    visit(line_number, tokens);
-    pos = end + 1;
-  }
-}
-
-/// Parses a whole token as a finite double; explains what is wrong otherwise.
-bool parse_coordinate(std::string_view token, double& value, std::string& why) {
-  const char* first = token.data();
-  if (!token.empty() && token.front() == '+')
-    ++first;
-  const auto [ptr, ec] = std::from_chars(first, token.data() + token.size(), value);
-  if (ec != std::errc() || ptr != token.data() + token.size()) {
-    // Formatted through a stream: GCC 12 warns falsely (-Wrestrict) about string
-    // concatenation with a one-character literal here.
-    std::ostringstream msg;
-    msg << '\'' << token << "' is not a number";
-    why = msg.str();
-    return false;
-  }
-  if (!std::isfinite(value)) {
-    std::ostringstream msg;
-    msg << "coordinate '" << token << "' is not finite";
-    why = msg.str();
-    return false;
-  }
-  return true;
-}
-
-/// Checks every `vertex x y z` line of an ASCII STL and that each facet has three of them.
-void lint_ascii_stl(const fs::path& path, std::string_view text) {
+/// Checks every `vertex x y z` line of an ASCII STL and that each facet has three of them;
+/// returns the number of facets.
+std::size_t lint_ascii_stl(const fs::path& path, std::string_view text) {
   std::size_t facets = 0, vertices = 0;
   bool saw_end = false;
-  for_each_line(text, [&](std::size_t line, const std::vector<std::string_view>& tokens) {
-    if (tokens.empty())
-      return;
+  detail::LineScanner scanner(text);
+  while (scanner.next_nonempty()) {
+    const auto& tokens = scanner.tokens();
     const std::string keyword = lowercase(std::string(tokens[0]));
     if (keyword == "facet")
       ++facets;
     if (keyword == "endsolid")
       saw_end = true;
     if (keyword != "vertex")
-      return;
+      continue;
     ++vertices;
     if (tokens.size() != 4)
-      fail(path, "line " + std::to_string(line) + ": a vertex needs 3 coordinates, found " +
-                     std::to_string(tokens.size() - 1));
-    for (int k = 1; k <= 3; ++k) {
+      detail::fail_at_line(
+          path, scanner.line_number(),
+          "a vertex needs 3 coordinates, found " + std::to_string(tokens.size() - 1));
+    for (std::size_t k = 1; k <= 3; ++k) {
       double value;
       std::string why;
-      if (!parse_coordinate(tokens[static_cast<std::size_t>(k)], value, why))
-        fail(path, "line " + std::to_string(line) + ": " + why);
+      if (!detail::parse_coordinate(tokens[k], value, why))
+        detail::fail_at_line(path, scanner.line_number(), why);
     }
-  });
+  }
   if (facets == 0)
     fail(path, "ASCII STL contains no facets");
   if (!saw_end)
@@ -253,104 +196,7 @@ void lint_ascii_stl(const fs::path& path, std::string_view text) {
     fail(path, "ASCII STL has " + std::to_string(facets) + " facets but " +
                    std::to_string(vertices) +
                    " vertex lines (3 per facet expected): the file is truncated or corrupt");
-}
-
-/// Checks every `v x y z [w]` line of an OBJ file.
-void lint_obj(const fs::path& path, std::string_view text) {
-  for_each_line(text, [&](std::size_t line, const std::vector<std::string_view>& tokens) {
-    if (tokens.empty() || tokens[0] != "v")
-      return;
-    if (tokens.size() < 4)
-      fail(path, "line " + std::to_string(line) + ": a vertex needs 3 coordinates, found " +
-                     std::to_string(tokens.size() - 1));
-    for (int k = 1; k <= 3; ++k) {
-      double value;
-      std::string why;
-      if (!parse_coordinate(tokens[static_cast<std::size_t>(k)], value, why))
-        fail(path, "line " + std::to_string(line) + ": " + why);
-    }
-  });
-}
-
-/// Checks a plain ASCII OFF file ("OFF", then NV NF NE, NV vertex lines, NF face lines)
-/// against its own header before OpenMesh reads it: OpenMesh's reader trusts the counts and,
-/// on a file shorter than announced, returns vertices and indices it never read (found by
-/// fuzz/fuzz_off). Every coordinate must be a finite number and every index in range.
-/// Variants with colours or normals per vertex (COFF, NOFF, ...) and binary OFF are left to
-/// OpenMesh.
-void lint_off(const fs::path& path, std::string_view text) {
-  std::vector<std::vector<std::string_view>> lines;  // non-empty lines, comments removed
-  for_each_line(text, [&](std::size_t, const std::vector<std::string_view>& line) {
-    std::vector<std::string_view> kept;
-    for (const std::string_view t : line) {
-      if (t.front() == '#') break;
-      kept.push_back(t);
-    }
-    if (!kept.empty()) lines.push_back(std::move(kept));
-  });
-  if (lines.empty() || lines[0][0] != "OFF" || (lines[0].size() > 1 && lines[0][1] == "BINARY"))
-    return;
-  const auto whole_number = [](std::string_view t, std::size_t& value) {
-    const char* end = t.data() + t.size();
-    const auto result = std::from_chars(t.data(), end, value);
-    return result.ec == std::errc() && result.ptr == end;
-  };
-  // The counts follow "OFF" on its line or on the next one.
-  std::size_t line = lines[0].size() > 1 ? 0 : 1;
-  const std::size_t first = line == 0 ? 1 : 0;
-  std::size_t nv = 0, nf = 0;
-  if (line >= lines.size() || lines[line].size() < first + 2 ||
-      !whole_number(lines[line][first], nv) || !whole_number(lines[line][first + 1], nf))
-    fail(path, "OFF header: expected the vertex, face and edge counts after 'OFF'");
-  ++line;
-  if (nv > lines.size() - line || nf > lines.size() - line - nv)
-    fail(path, "OFF header announces " + std::to_string(nv) + " vertices and " +
-                   std::to_string(nf) + " faces but the file has only " +
-                   std::to_string(lines.size() - line) +
-                   " lines after it: the file is truncated or corrupt");
-  for (std::size_t v = 0; v < nv; ++v, ++line) {
-    if (lines[line].size() < 3)
-      fail(path, "vertex " + std::to_string(v) + ": needs 3 coordinates, found " +
-                     std::to_string(lines[line].size()));
-    for (std::size_t k = 0; k < 3; ++k) {
-      double value;
-      std::string why;
-      if (!parse_coordinate(lines[line][k], value, why))
-        fail(path, "vertex " + std::to_string(v) + ": " + why);
-    }
-  }
-  for (std::size_t f = 0; f < nf; ++f, ++line) {
-    const auto& tokens = lines[line];
-    std::size_t corners = 0;
-    if (!whole_number(tokens[0], corners) || corners + 1 > tokens.size())
-      fail(path, "face " + std::to_string(f) + ": '" + std::string(tokens[0]) +
-                     "' is not the number of corners listed on its line: the file is corrupt");
-    for (std::size_t k = 1; k <= corners; ++k) {
-      std::size_t index = 0;
-      if (!whole_number(tokens[k], index) || index >= nv)
-        fail(path, "face " + std::to_string(f) + " refers to vertex '" + std::string(tokens[k]) +
-                       "' but the file has " + std::to_string(nv) +
-                       " vertices (numbered from 0): the file is corrupt");
-    }
-  }
-}
-
-/// Checks that a PLY file starts with "ply" and ends its header with an "end_header" line:
-/// OpenMesh's PLY reader loops forever on a header that never ends (found by
-/// fuzz/fuzz_ply).
-void lint_ply(const fs::path& path, std::string_view text) {
-  if (text.substr(0, 3) != "ply")
-    fail(path, "not a PLY file: it does not start with 'ply'");
-  std::size_t at = 0;
-  while ((at = text.find("end_header", at)) != std::string_view::npos) {
-    const bool line_start = text[at - 1] == '\n';
-    const std::size_t after = at + 10;
-    const bool line_end =
-        after == text.size() || text[after] == '\n' || text[after] == '\r' || text[after] == ' ';
-    if (line_start && line_end) return;
-    at = after;
-  }
-  fail(path, "the PLY header has no 'end_header' line: the file is truncated or corrupt");
+  return facets;
 }
 
 /// Decides binary vs ASCII STL the way OpenMesh does (a binary file's size is exactly
@@ -404,50 +250,19 @@ void check_binary_stl_coordinates(const fs::path& path, std::string_view text) {
   }
 }
 
-}  // namespace
-
-TriangleSoup read_triangle_soup(const fs::path& path) {
-  std::error_code ec;
-  const fs::file_status status = fs::status(path, ec);
-  if (ec || !fs::exists(status))
-    fail(path, "no such file");
-  if (fs::is_directory(status))
-    fail(path, "is a directory, not a mesh file");
-  if (!fs::is_regular_file(status))
-    fail(path, "is not a regular file");
-
-  const std::string extension = lowercase(path.extension().string());
-  TriangleSoup soup;
-  if (extension == ".stl")
-    soup.format = "STL";
-  else if (extension == ".obj")
-    soup.format = "OBJ";
-  else if (extension == ".off")
-    soup.format = "OFF";
-  else if (extension == ".ply")
-    soup.format = "PLY";
-  else
-    fail(path, "unsupported file extension '" + path.extension().string() +
-                   "': use .stl, .obj, .off or .ply");
-
-  const std::string text = read_all(path);
-  if (text.empty())
-    fail(path, "the file is empty");
-
-  if (soup.format == "STL") {
-    if (stl_is_binary(path, text)) {
-      soup.format = "binary STL";
-      check_binary_stl_coordinates(path, text);
-    } else {
-      soup.format = "ASCII STL";
-      lint_ascii_stl(path, text);
-    }
-  } else if (soup.format == "OBJ") {
-    lint_obj(path, text);
-  } else if (soup.format == "OFF") {
-    lint_off(path, text);
-  } else if (soup.format == "PLY") {
-    lint_ply(path, text);
+/// Binary or ASCII STL through OpenMesh's STL reader (which merges exactly equal corners),
+/// after the checks above. OpenMesh reads the file again by its path.
+void read_stl(const fs::path& path, const std::string& text, TriangleSoup& soup) {
+  std::size_t facets = 0;
+  if (stl_is_binary(path, text)) {
+    soup.format = "binary STL";
+    check_binary_stl_coordinates(path, text);
+    std::uint32_t count = 0;
+    std::memcpy(&count, text.data() + 80, sizeof count);
+    facets = count;
+  } else {
+    soup.format = "ASCII STL";
+    facets = lint_ascii_stl(path, text);
   }
 
   SoupImporter importer;
@@ -480,25 +295,86 @@ TriangleSoup read_triangle_soup(const fs::path& path) {
     for (int k = 0; k < 3; ++k)
       soup.faces(static_cast<Eigen::Index>(f), k) =
           importer.triangles[f][static_cast<std::size_t>(k)];
-  soup.polygons_triangulated = importer.polygons_triangulated;
-  soup.triangles_from_polygons = importer.triangles_from_polygons;
-  soup.collapsed_faces_dropped = importer.short_faces;
+  soup.collapsed_faces_dropped =
+      importer.short_faces + facets - std::min(facets, importer.triangles.size());
+  soup.corners_in_file = 3 * facets;
+}
 
-  if (soup.format == "binary STL") {
-    std::uint32_t count = 0;
-    std::memcpy(&count, text.data() + 80, sizeof count);
-    soup.corners_in_file = 3 * static_cast<std::size_t>(count);
-    soup.collapsed_faces_dropped += count - std::min<std::size_t>(count, importer.triangles.size());
-  } else if (soup.format == "ASCII STL") {
-    std::size_t facets = 0;
-    for_each_line(text, [&](std::size_t, const std::vector<std::string_view>& tokens) {
-      if (!tokens.empty() && lowercase(std::string(tokens[0])) == "facet")
-        ++facets;
-    });
-    soup.corners_in_file = 3 * facets;
-    soup.collapsed_faces_dropped += facets - std::min(facets, importer.triangles.size());
+/// Splits polygons into triangle fans from their first corner: exact for convex planar
+/// polygons, which is what OBJ/OFF/PLY exporters write; it is reported so the user knows it
+/// happened. Polygons with fewer than three corners are dropped and counted.
+void triangulate(const fs::path& path, const detail::PolygonSoup& polygons, TriangleSoup& soup) {
+  // Eigen's index matrices hold int; a file this large would need tens of gigabytes anyway.
+  constexpr auto kMaxIndex = static_cast<std::size_t>(std::numeric_limits<int>::max());
+  if (polygons.points.size() > kMaxIndex)
+    fail(path, "more than " + std::to_string(kMaxIndex) + " vertices: the file is too large");
+  std::size_t triangles = 0;
+  for (std::size_t k = 0; k < polygons.num_polygons(); ++k) {
+    const std::size_t corners = polygons.start[k + 1] - polygons.start[k];
+    if (corners < 3) {
+      ++soup.collapsed_faces_dropped;
+      continue;
+    }
+    triangles += corners - 2;
+    if (corners > 3) {
+      ++soup.polygons_triangulated;
+      soup.triangles_from_polygons += corners - 2;
+    }
+  }
+  if (triangles > kMaxIndex)
+    fail(path, "more than " + std::to_string(kMaxIndex) + " triangles: the file is too large");
+
+  soup.vertices.resize(static_cast<Eigen::Index>(polygons.points.size()), 3);
+  for (std::size_t v = 0; v < polygons.points.size(); ++v)
+    soup.vertices.row(static_cast<Eigen::Index>(v)) = polygons.points[v].transpose();
+  soup.faces.resize(static_cast<Eigen::Index>(triangles), 3);
+  Eigen::Index row = 0;
+  for (std::size_t k = 0; k < polygons.num_polygons(); ++k) {
+    const std::size_t first = polygons.start[k], end = polygons.start[k + 1];
+    for (std::size_t c = first + 1; c + 1 < end; ++c, ++row)
+      soup.faces.row(row) << static_cast<int>(polygons.corners[first]),
+          static_cast<int>(polygons.corners[c]), static_cast<int>(polygons.corners[c + 1]);
+  }
+  soup.corners_in_file = 3 * triangles;
+}
+
+}  // namespace
+
+TriangleSoup read_triangle_soup(const fs::path& path) {
+  std::error_code ec;
+  const fs::file_status status = fs::status(path, ec);
+  if (ec || !fs::exists(status))
+    fail(path, "no such file");
+  if (fs::is_directory(status))
+    fail(path, "is a directory, not a mesh file");
+  if (!fs::is_regular_file(status))
+    fail(path, "is not a regular file");
+
+  const std::string extension = lowercase(path.extension().string());
+  TriangleSoup soup;
+  if (extension == ".stl")
+    soup.format = "STL";
+  else if (extension == ".obj")
+    soup.format = "OBJ";
+  else if (extension == ".off")
+    soup.format = "OFF";
+  else if (extension == ".ply")
+    soup.format = "PLY";
+  else
+    fail(path, "unsupported file extension '" + path.extension().string() +
+                   "': use .stl, .obj, .off or .ply");
+
+  const std::string text = read_all(path);
+  if (text.empty())
+    fail(path, "the file is empty");
+
+  if (soup.format == "STL") {
+    read_stl(path, text, soup);
   } else {
-    soup.corners_in_file = 3 * importer.triangles.size();
+    const detail::PolygonSoup polygons = soup.format == "OBJ"   ? detail::read_obj(path, text)
+                                         : soup.format == "OFF" ? detail::read_off(path, text)
+                                                                : detail::read_ply(path, text);
+    triangulate(path, polygons, soup);
   }
   if (soup.faces.rows() == 0)
     fail(path, "the file contains no triangles");

@@ -1,10 +1,15 @@
 #pragma once
 // Reading triangle meshes from STL (ASCII and binary), OBJ, OFF and PLY files.
 //
-// The files are parsed by OpenMesh's readers, but into a raw triangle soup rather than a
-// halfedge mesh: a halfedge mesh refuses non-manifold faces and would silently drop exactly
-// the defects that mesh validation must report. Nothing is welded, validated or repaired
-// here (see vertex_welding.hpp, mesh_validation.hpp, mesh_preparation.hpp).
+// The result is a raw triangle soup rather than a halfedge mesh: a halfedge mesh refuses
+// non-manifold faces and would silently drop exactly the defects that mesh validation must
+// report. Nothing is welded, validated or repaired here (see vertex_welding.hpp,
+// mesh_validation.hpp, mesh_preparation.hpp).
+//
+// STL goes through OpenMesh's STL reader after bemshape's own checks of the whole file.
+// OBJ, OFF and PLY are parsed by bemshape's own readers (detail/polygon_file_readers.hpp):
+// fuzzing found OpenMesh's readers of these formats aborting, crashing, hanging or
+// returning data they never read on malformed files (docs/reliability.md).
 //
 // Units: coordinates are returned exactly as stored in the file. No file format records its
 // length unit, so every bemshape length (thickness, edge length, volume) is in the file's
@@ -30,7 +35,8 @@ struct TriangleSoup {
   std::size_t polygons_triangulated = 0;
   std::size_t triangles_from_polygons = 0;
   /// Faces with fewer than three distinct corners that the reader dropped (OpenMesh's STL
-  /// reader drops facets whose corners coincide exactly; polygons with < 3 corners).
+  /// reader drops facets whose corners coincide exactly; OBJ/OFF/PLY polygons listing fewer
+  /// than 3 corners).
   std::size_t collapsed_faces_dropped = 0;
   /// Triangle corners stored in the file (3 per STL facet) and, for STL, how many distinct
   /// positions OpenMesh's STL reader kept after merging exactly equal corners.
@@ -41,13 +47,15 @@ struct TriangleSoup {
 ///
 /// Before any parsing, a binary STL's triangle count is checked against the file size
 /// (84 + 50·n bytes), so a small file claiming billions of triangles is rejected without
-/// allocating; ASCII STL and OBJ vertex lines are checked for unparsable and non-finite
-/// numbers, which OpenMesh's readers would otherwise read as zeros.
+/// allocating; ASCII STL vertex lines are checked for unparsable and non-finite numbers,
+/// which OpenMesh's reader would otherwise read as zeros. OBJ, OFF and PLY readers never
+/// allocate from a header's count: a PLY header whose counts need more bytes than the file
+/// has is refused before its body is read, and OFF/PLY lists grow only with data present.
 ///
-/// Throws InputError (one line naming the file and what is wrong) if the path is missing, a
-/// directory, unreadable or empty, the extension is not supported, the file is truncated or
-/// malformed, a coordinate is NaN/Inf, a face refers to a missing vertex, or there are no
-/// triangles.
+/// Throws InputError (one line naming the file, the line or byte offset where it can, and
+/// what is wrong) if the path is missing, a directory, unreadable or empty, the extension is
+/// not supported, the file is truncated or malformed, a coordinate is NaN/Inf, a face refers
+/// to a missing vertex, or there are no triangles.
 TriangleSoup read_triangle_soup(const std::filesystem::path& path);
 
 /// Writes an indexed triangle mesh as binary STL (float32 coordinates, zero normals are
