@@ -182,6 +182,10 @@ nlohmann::json report_json(const ThicknessOptions& options, double h0, const Bou
   for (const auto& [stage, seconds] : times.stages())
     timing[stage] = seconds;
   timing["total"] = times.elapsed();
+  // Wall seconds of the assembly's stages (the H-matrix path; empty for the dense path).
+  nlohmann::json assembly_stages = nlohmann::json::object();
+  for (const auto& [stage, seconds] : run.solution.report.assembly_stages)
+    assembly_stages[stage] = seconds;
   const geometry::MeshReport& input = run.input.report;
   return {
       {"bemshape", BEMSHAPE_VERSION},
@@ -219,7 +223,8 @@ nlohmann::json report_json(const ThicknessOptions& options, double h0, const Bou
         {"iterations", run.solution.report.iterations},
         {"residual", run.solution.report.residual},
         {"operator_mb", double(run.solution.report.operator_bytes) / 1e6},
-        {"compression", run.solution.report.compression}}},
+        {"compression", run.solution.report.compression},
+        {"assembly_stages", assembly_stages}}},
       {"timing", timing},
       {"memory", {{"peak_mb", peak_mb}}}};
 }

@@ -8,6 +8,8 @@
 
 #include <cstdint>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -23,6 +25,9 @@ struct SolveReport {
   double residual = 0.0;          ///< max over right-hand sides of ‖A x − b‖ / ‖b‖
   double assembly_seconds = 0.0;  ///< wall time of the operator assembly
   double solve_seconds = 0.0;     ///< wall time of the factorisation and solves
+  /// Stages of the assembly, in order (name, wall time [s]); empty for the dense path, whose
+  /// assembly is one stage.
+  std::vector<std::pair<std::string, double>> assembly_stages;
   std::uint64_t operator_bytes = 0;  ///< memory held by the assembled operators [bytes]
   double compression = 0.0;  ///< stored / dense entries of the compressed part (0: not compressed)
 };

@@ -5,11 +5,12 @@
 //   V[j, k] = ∫_{T_j} ∫_{T_k} G(|x − y|) dA_y dA_x                   single layer [units³]
 //   K[j, k] = ∫_{T_j} p.v. ∫_{T_k} ∂G/∂n_y(x, y) dA_y dA_x           double layer [units²]
 //
-// with G the Laplace kernel 1/(4πr) or the Yukawa kernel e^{−κr}/(4πr) and n_y outward. The
-// inner integral is the semi-analytic panel integral of bem/panel_integrals.hpp (exact in the
-// radial direction, so it is accurate for every x on or near T_k); the outer integral is a
-// Gauss rule on T_j graded by the distance between the panels (kOuterRules below). On a
-// flat panel the double-layer kernel vanishes on the panel itself, so K[j, j] = 0; the ±½
+// with G the Laplace kernel 1/(4πr) or the Yukawa kernel e^{−κr}/(4πr) and n_y outward.
+// Panels that share a corner (the singular pairs) are integrated in 4-D by the Sauter–Schwab
+// rules of bem/sauter_schwab_rules.hpp. For all others the inner integral is the
+// semi-analytic panel integral of bem/panel_integrals.hpp (exact in the radial direction, so
+// it is accurate for every x near T_k) and the outer integral a Gauss rule on T_j graded by
+// the distance between the panels (OuterRuleThresholds below). On a flat panel the double-layer kernel vanishes on the panel itself, so K[j, j] = 0; the ±½
 // jump terms are ½·|T_j| on the diagonal and are added by the caller.
 //
 // Why Galerkin and not collocation: the exterior (Yukawa) solution has a boundary layer of
@@ -23,6 +24,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -30,6 +32,8 @@
 
 #include "bem/panel.hpp"
 #include "bem/panel_integrals.hpp"
+#include "bem/radial_values.hpp"
+#include "bem/sauter_schwab_rules.hpp"
 #include "bem/triangle_quadrature.hpp"
 
 namespace bemshape::bem {
@@ -109,6 +113,62 @@ inline int attenuated_rule_points(double attenuation, double kappa_diameter, dou
   return 0;
 }
 
+/// How two touching panels meet, and their corners reordered for bem/sauter_schwab_rules.hpp:
+/// shared corners first, in the same order in both panels.
+struct TouchingOrder {
+  TouchingKind kind;
+  std::array<int, 3> test, trial;  ///< corner indices into Panel::corners
+};
+
+/// The touching order of two panels that share one, two or three corners (compared exactly:
+/// corners are copies of the same mesh vertices); nullopt if they share none.
+inline std::optional<TouchingOrder> touching_order(const Panel& test, const Panel& trial) {
+  std::array<int, 3> shared_test{}, shared_trial{};
+  int shared = 0;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      if (test.corners[size_t(i)] == trial.corners[size_t(j)]) {
+        shared_test[size_t(shared)] = i;
+        shared_trial[size_t(shared)] = j;
+        ++shared;
+        break;
+      }
+  if (shared == 0) return std::nullopt;
+  if (shared == 3) return TouchingOrder{TouchingKind::coincident, shared_test, shared_trial};
+  // Complete both orders with the corners not shared, in increasing index order.
+  const auto complete = [shared](std::array<int, 3> order) {
+    int next = shared;
+    for (int c = 0; c < 3; ++c)
+      if (std::find(order.begin(), order.begin() + shared, c) == order.begin() + shared)
+        order[size_t(next++)] = c;
+    return order;
+  };
+  return TouchingOrder{shared == 2 ? TouchingKind::common_edge : TouchingKind::common_vertex,
+                       complete(shared_test), complete(shared_trial)};
+}
+
+/// Gauss points per direction of the Sauter–Schwab rule for a touching pair of `kind`, by the
+/// kernel's κ·diameter (0 for Laplace). Measured against the same rule with 16 points on a
+/// sphere mesh and on the right-angled edges of a box (tests/bem/test_sauter_schwab_rules.cpp,
+/// docs/quadrature.md): the single layer is within 3e−5 relative and the double layer within
+/// 1e−4 of |V|/diameter, typically 1e−6; the subdivided outer rule used for these pairs
+/// before was off by 2e−3. The worst case is K across a right-angled edge. The Yukawa
+/// exponential needs more points as κ·diameter grows, most of all for vertex neighbours,
+/// whose points lie up to two diameters apart.
+inline int touching_rule_points(TouchingKind kind, double kappa_diameter) {
+  struct Row {
+    double max_kappa_diameter;
+    int coincident, common_edge, common_vertex;
+  };
+  static constexpr Row table[] = {{0.0, 6, 6, 5}, {3.0, 6, 7, 6}, {6.0, 7, 7, 7}, {12.0, 8, 8, 9}};
+  for (const Row& row : table)
+    if (kappa_diameter <= row.max_kappa_diameter)
+      return kind == TouchingKind::coincident    ? row.coincident
+             : kind == TouchingKind::common_edge ? row.common_edge
+                                                 : row.common_vertex;
+  return 12;
+}
+
 template <class Kernel>
 class GalerkinOperators {
  public:
@@ -120,28 +180,25 @@ class GalerkinOperators {
     double double_layer = 0.0;  ///< K[j, k]
   };
 
-  /// Levels of subdivision of the test panel for near interactions: one for Laplace and
-  /// mild κ, two when the Yukawa boundary layer 1/κ is much thinner than the panel. A third
-  /// level (384 outer points) changed the plate's thickness by 1e−6 relative at κ·diam = 14
-  /// and cost 3.7× the assembly time, so two is the cap.
-  int near_levels(const Panel& test, const Panel& trial) const {
-    const double kd = kernel_.kappa() * test.diameter;
-    const int levels = kd <= 4.0 ? 1 : 2;
-    return touching(test, trial) ? levels : levels - 1;
+  /// Levels of subdivision of the test panel for near pairs that do not touch: none for
+  /// Laplace and mild κ, one when the Yukawa boundary layer 1/κ is much thinner than the panel
+  /// (κ·diameter > 4). (Touching pairs use the Sauter–Schwab rules instead.)
+  int near_levels(const Panel& test) const {
+    return kernel_.kappa() * test.diameter <= 4.0 ? 0 : 1;
   }
 
   /// True if the panels share a corner (corners are copies of the same mesh vertices, so
   /// shared ones compare equal exactly).
-  static bool touching(const Panel& a, const Panel& b) {
-    for (const auto& p : a.corners)
-      for (const auto& q : b.corners)
-        if (p == q) return true;
-    return false;
-  }
+  static bool touching(const Panel& a, const Panel& b) { return touching_order(a, b).has_value(); }
 
   Entry entry(Eigen::Index row, Eigen::Index col) const {
     const Panel& test = (*panels_)[static_cast<size_t>(row)];
     const Panel& trial = (*panels_)[static_cast<size_t>(col)];
+    if (const auto order = touching_order(test, trial)) {
+      const int n = touching_rule_points(order->kind,
+                                         kernel_.kappa() * std::max(test.diameter, trial.diameter));
+      return touching_entry(test, trial, *order, sauter_schwab_rule(order->kind, n));
+    }
     const double ratio = (test.centroid - trial.centroid).norm() /
                          std::max(test.diameter, trial.diameter);
     if constexpr (Kernel::has_exponential_decay) {
@@ -158,14 +215,24 @@ class GalerkinOperators {
       const PanelIntegrals p = integrate_panel(kernel_, trial, test.centroid);
       return {test.area * p.single_layer, test.area * p.double_layer};
     }
+    if (ratio >= OuterRuleThresholds::middle_ratio)
+      return outer_rule_entry(test, trial, 0, symmetric_triangle_rule(2));
+    if (ratio >= OuterRuleThresholds::near_ratio)
+      return outer_rule_entry(test, trial, 0, symmetric_triangle_rule(4));
+    return outer_rule_entry(test, trial, near_levels(test), symmetric_triangle_rule(4));
+  }
+
+  /// The entry by `rule` on T_j split into 4^levels sub-triangles, times the panel integrals
+  /// of T_k at each point (exact in the radial direction, bem/panel_integrals.hpp): the
+  /// scheme of the near pairs that do not touch, and with many levels the reference the tests
+  /// check the touching rules against. For touching pairs it converges slowly (the potential
+  /// of T_k has logarithmic derivatives at its edges), which is why entry() does not use it
+  /// for them.
+  Entry outer_rule_entry(const Panel& test, const Panel& trial, int levels,
+                         const TriangleRule& rule) const {
     thread_local std::vector<Eigen::Vector3d> points;
     thread_local std::vector<double> weights;
-    if (ratio >= OuterRuleThresholds::middle_ratio)
-      subdivided_rule(test, 0, symmetric_triangle_rule(2), points, weights);
-    else if (ratio >= OuterRuleThresholds::near_ratio)
-      subdivided_rule(test, 0, symmetric_triangle_rule(4), points, weights);
-    else
-      subdivided_rule(test, near_levels(test, trial), symmetric_triangle_rule(4), points, weights);
+    subdivided_rule(test, levels, rule, points, weights);
     Entry e;
     for (size_t q = 0; q < points.size(); ++q) {
       const PanelIntegrals p = integrate_panel(kernel_, trial, points[q]);
@@ -174,8 +241,63 @@ class GalerkinOperators {
     }
     // A flat panel's double-layer kernel vanishes on the panel itself; zero it exactly rather
     // than let the rounding of the test points' heights pick a one-sided limit.
-    if (row == col) e.double_layer = 0.0;
+    if (&test == &trial) e.double_layer = 0.0;
     return e;
+  }
+
+  /// The entry of two touching panels by a Sauter–Schwab rule: with χ_j, χ_k the affine maps of
+  /// the reordered panels (Jacobians 2|T_j|, 2|T_k|),
+  ///   V = 4|T_j||T_k| Σ_q w_q G(r_q),  K = 4|T_j||T_k| Σ_q w_q (−d_q G'(r_q)/r_q),
+  /// r_q = |χ_j(x̂_q) − χ_k(ŷ_q)|, d_q = (χ_j(x̂_q) − χ_k(ŷ_q))·n_k. K vanishes for coincident
+  /// panels (d ≡ 0 on a flat panel) and is set to exactly 0 there.
+  Entry touching_entry(const Panel& test, const Panel& trial, const TouchingOrder& order,
+                       const SauterSchwabRule& rule) const {
+    const auto corner = [](const Panel& p, const std::array<int, 3>& o, int i) -> const Eigen::Vector3d& {
+      return p.corners[size_t(o[size_t(i)])];
+    };
+    const Eigen::Vector3d a = corner(test, order.test, 0) - corner(trial, order.trial, 0);
+    const Eigen::Vector3d t1 = corner(test, order.test, 1) - corner(test, order.test, 0);
+    const Eigen::Vector3d t2 = corner(test, order.test, 2) - corner(test, order.test, 1);
+    const Eigen::Vector3d s1 = corner(trial, order.trial, 1) - corner(trial, order.trial, 0);
+    const Eigen::Vector3d s2 = corner(trial, order.trial, 2) - corner(trial, order.trial, 1);
+    const Eigen::Vector3d& n = trial.normal;
+    const double an = a.dot(n), t1n = t1.dot(n), t2n = t2.dot(n);
+    // Both kernels are G = c·E(r)/r with E = 1 (Laplace) or e^{−κr} (Yukawa), so
+    // −G'(r)/r = c·E(r)(1 + κr)/r³. Evaluated in chunks as Eigen arrays, which vectorise the
+    // square roots and exponentials.
+    constexpr Eigen::Index chunk = 256;
+    using Chunk = Eigen::Array<double, Eigen::Dynamic, 1, 0, chunk, 1>;
+    using Nodes = Eigen::Map<const Eigen::ArrayXd>;
+    const double kappa = kernel_.kappa();
+    const auto size = static_cast<Eigen::Index>(rule.size());
+    double sl = 0.0, dl = 0.0;
+    for (Eigen::Index begin = 0; begin < size; begin += chunk) {
+      const Eigen::Index m = std::min(chunk, size - begin);
+      const Nodes x1(rule.x1.data() + begin, m), x2(rule.x2.data() + begin, m);
+      const Nodes y1(rule.y1.data() + begin, m), y2(rule.y2.data() + begin, m);
+      const Nodes w(rule.weight.data() + begin, m);
+      const Chunk dx = a.x() + x1 * t1.x() + x2 * t2.x() - y1 * s1.x() - y2 * s2.x();
+      const Chunk dy = a.y() + x1 * t1.y() + x2 * t2.y() - y1 * s1.y() - y2 * s2.y();
+      const Chunk dz = a.z() + x1 * t1.z() + x2 * t2.z() - y1 * s1.z() - y2 * s2.z();
+      const Chunk r2 = dx.square() + dy.square() + dz.square();
+      const Chunk inv_r = r2.rsqrt();
+      // (x − y)·n_k: the trial panel's own edges are orthogonal to n_k.
+      const Chunk d = an + x1 * t1n + x2 * t2n;
+      if constexpr (Kernel::has_exponential_decay) {
+        const Chunk r = r2 * inv_r;
+        const Chunk we = w * (-kappa * r).exp();
+        sl += (we * inv_r).sum();
+        dl += (we * d * (1.0 + kappa * r) * inv_r.cube()).sum();
+      } else {
+        sl += (w * inv_r).sum();
+        dl += (w * d * inv_r.cube()).sum();
+      }
+    }
+    sl *= Kernel::inv_four_pi;
+    dl *= Kernel::inv_four_pi;
+    const double scale = 4.0 * test.area * trial.area;
+    if (order.kind == TouchingKind::coincident) dl = 0.0;
+    return {scale * sl, scale * dl};
   }
 
   /// A Yukawa entry whose attenuation allows a low-order rule: centroid of the test panel

@@ -12,6 +12,8 @@
 
 #include <Eigen/Core>
 
+#include "bem/radial_values.hpp"
+
 namespace bemshape::bem {
 
 struct LaplaceKernel {
@@ -26,6 +28,11 @@ struct LaplaceKernel {
   double value(double r) const noexcept { return inv_four_pi / r; }
   /// G0'(r) = −1/(4πr²).
   double radial_derivative(double r) const noexcept { return -inv_four_pi / (r * r); }
+  /// G0(r) and G0'(r) together (the quadrature loops need both at every point).
+  RadialValues values(double r) const noexcept {
+    const double g = inv_four_pi / r;
+    return {g, -g / r};
+  }
   /// G0''(r) = 2/(4πr³).
   double second_radial_derivative(double r) const noexcept {
     return 2.0 * inv_four_pi / (r * r * r);

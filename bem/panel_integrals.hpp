@@ -23,6 +23,7 @@
 #include "bem/panel.hpp"
 #include "bem/panel_integral_values.hpp"
 #include "bem/polar_quadrature.hpp"
+#include "bem/radial_values.hpp"
 #include "bem/triangle_quadrature.hpp"
 
 namespace bemshape::bem {
@@ -75,8 +76,9 @@ PanelIntegrals gauss_panel_integrals(const Kernel& kernel, const Panel& panel,
     const Eigen::Vector3d diff = x - y;
     const double r = diff.norm();
     const double w = rule.weight[k];
-    const double g1 = kernel.radial_derivative(r);
-    sl += w * kernel.value(r);
+    const RadialValues g = kernel.values(r);
+    const double g1 = g.radial_derivative;
+    sl += w * g.value;
     // ∂G/∂n_y = G'(r)(y − x)·n/r = −d G'(r)/r.
     dl_factor += w * g1 / r;
     if (with_gradients) {

@@ -13,6 +13,7 @@
 
 #include <Eigen/Core>
 
+#include "bem/radial_values.hpp"
 #include "core/errors.hpp"
 
 namespace bemshape::bem {
@@ -41,6 +42,11 @@ struct YukawaKernel {
   /// Gκ'(r) = −e^{−κr}(1 + κr)/(4πr²).
   double radial_derivative(double r) const noexcept {
     return -inv_four_pi * std::exp(-kappa_ * r) * (1.0 + kappa_ * r) / (r * r);
+  }
+  /// Gκ(r) and Gκ'(r) from one exponential.
+  RadialValues values(double r) const noexcept {
+    const double g = inv_four_pi * std::exp(-kappa_ * r) / r;
+    return {g, -g * (1.0 + kappa_ * r) / r};
   }
   /// Gκ''(r) = e^{−κr}(κ²r² + 2κr + 2)/(4πr³).
   double second_radial_derivative(double r) const noexcept {

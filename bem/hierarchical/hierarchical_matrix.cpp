@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <new>
 #include <string>
 
@@ -52,10 +53,12 @@ HierarchicalMatrix::HierarchicalMatrix(const ClusterTree& row_tree, const Cluste
   std::atomic<std::size_t> done{0};
   std::atomic<bool> out_of_memory{false};
   const std::size_t total = blocks_.size();
+  std::vector<double> block_seconds(total, 0.0);
 #pragma omp parallel for schedule(dynamic, 1)
   for (std::size_t k = 0; k < total; ++k) {
     // A cancelled run skips the remaining blocks (an exception cannot leave the loop).
     if (cancellation_requested() || out_of_memory) continue;
+    const auto block_start = std::chrono::steady_clock::now();
     try {
       Block& b = blocks_[k];
       const Eigen::Index m = b.row_end - b.row_begin, n = b.col_end - b.col_begin;
@@ -94,6 +97,8 @@ HierarchicalMatrix::HierarchicalMatrix(const ClusterTree& row_tree, const Cluste
     } catch (const std::bad_alloc&) {
       out_of_memory = true;  // reported after the loop: an exception cannot leave it
     }
+    block_seconds[k] =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - block_start).count();
     const std::size_t finished = ++done;
     if (progress && finished % 256 == 0) {
 #pragma omp critical(bemshape_progress)
@@ -106,7 +111,9 @@ HierarchicalMatrix::HierarchicalMatrix(const ClusterTree& row_tree, const Cluste
                         std::to_string(cols_) + " elements ran out of memory while assembling; "
                         "use a coarser mesh (larger --max-edge)");
   stats_.full_entries = std::uint64_t(o) * std::uint64_t(rows_) * std::uint64_t(g) * std::uint64_t(cols_);
-  for (const Block& b : blocks_) {
+  for (std::size_t k = 0; k < total; ++k) {
+    const Block& b = blocks_[k];
+    (b.is_low_rank ? stats_.low_rank_seconds : stats_.dense_seconds) += block_seconds[k];
     if (b.is_low_rank) {
       ++stats_.admissible_blocks;
       stats_.low_rank_entries += std::uint64_t(b.low_rank.U.size() + b.low_rank.V.size());

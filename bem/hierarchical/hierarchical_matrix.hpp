@@ -52,6 +52,9 @@ struct HierarchicalMatrixStats {
   std::uint64_t full_entries = 0;      ///< N·g·N, what a dense matrix would hold
   Eigen::Index max_rank = 0;
   std::size_t admissible_blocks = 0, dense_blocks = 0;
+  /// Thread-seconds spent computing the dense blocks (the near field) and the low-rank blocks
+  /// (ACA and recompression: the far field), summed over threads [s].
+  double dense_seconds = 0.0, low_rank_seconds = 0.0;
   std::uint64_t bytes() const { return 8 * (dense_entries + low_rank_entries); }
   /// Stored entries over the dense matrix's entries.
   double compression() const {
