@@ -1,6 +1,7 @@
 #include "fem/characteristic_function.hpp"
 
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "core/cancellation.hpp"
@@ -8,6 +9,13 @@
 #include "geometry/point_inside.hpp"
 
 namespace bemshape::fem {
+namespace {
+
+/// For PlannedGrid::cells_with, which only counts: no limit on the size of a grid never
+/// allocated.
+constexpr GridIndex kUnlimitedCells = std::numeric_limits<GridIndex>::max();
+
+}  // namespace
 
 template <int D>
 void fill_characteristic_function(VoxelGrid<D>& grid, const InsideTest<D>& inside,
@@ -45,7 +53,7 @@ void fill_characteristic_function(VoxelGrid<D>& grid, const InsideTest<D>& insid
 template <int D>
 VoxelGrid<D> grid_for_image(const BinaryImage<D>& image, double pixel_size, double cell_size,
                             const features::FeatureParameters& parameters, int samples_per_axis,
-                            GridIndex max_cells) {
+                            GridIndex max_cells, const GridCheck<D>& check) {
   if (!(pixel_size > 0.0) || !std::isfinite(pixel_size))
     throw InputError("image: the pixel size must be a positive length (got " +
                      std::to_string(pixel_size) + ")");
@@ -53,6 +61,10 @@ VoxelGrid<D> grid_for_image(const BinaryImage<D>& image, double pixel_size, doub
   for (int d = 0; d < D; ++d)
     hi(d) = static_cast<double>(image.size[d]) * pixel_size;
   VoxelGrid<D> grid = grid_around<D>(lo, hi, cell_size, parameters, max_cells, true);
+  if (check)
+    check({grid, [&](double cell, const features::FeatureParameters& p) {
+             return grid_around<D>(lo, hi, cell, p, kUnlimitedCells, true).num_cells();
+           }});
   const auto size = image.size;
   fill_characteristic_function<D>(
       grid,
@@ -72,11 +84,15 @@ VoxelGrid<D> grid_for_image(const BinaryImage<D>& image, double pixel_size, doub
 
 VoxelGrid<3> grid_for_mesh(const geometry::SurfaceMesh& mesh, double cell_size,
                            const features::FeatureParameters& parameters, int samples_per_axis,
-                           GridIndex max_cells) {
+                           GridIndex max_cells, const GridCheck<3>& check) {
   if (mesh.empty())
     throw InputError("voxel grid: the surface mesh has no faces");
   const geometry::BoundingBox box = mesh.bounding_box();
   VoxelGrid<3> grid = grid_around<3>(box.min, box.max, cell_size, parameters, max_cells);
+  if (check)
+    check({grid, [&](double cell, const features::FeatureParameters& p) {
+             return grid_around<3>(box.min, box.max, cell, p, kUnlimitedCells).num_cells();
+           }});
   const geometry::PointInsideQuery query(mesh);
   fill_characteristic_function<3>(
       grid, [&](const Eigen::Vector3d& x) { return query.inside(x); }, samples_per_axis);
@@ -86,8 +102,10 @@ VoxelGrid<3> grid_for_mesh(const geometry::SurfaceMesh& mesh, double cell_size,
 template void fill_characteristic_function<2>(VoxelGrid<2>&, const InsideTest<2>&, int);
 template void fill_characteristic_function<3>(VoxelGrid<3>&, const InsideTest<3>&, int);
 template VoxelGrid<2> grid_for_image<2>(const BinaryImage<2>&, double, double,
-                                        const features::FeatureParameters&, int, GridIndex);
+                                        const features::FeatureParameters&, int, GridIndex,
+                                        const GridCheck<2>&);
 template VoxelGrid<3> grid_for_image<3>(const BinaryImage<3>&, double, double,
-                                        const features::FeatureParameters&, int, GridIndex);
+                                        const features::FeatureParameters&, int, GridIndex,
+                                        const GridCheck<3>&);
 
 }  // namespace bemshape::fem

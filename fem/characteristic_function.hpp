@@ -24,6 +24,21 @@ namespace bemshape::fem {
 template <int D>
 using InsideTest = std::function<bool(const Eigen::Matrix<double, D, 1>& x)>;
 
+/// What grid_for_image and grid_for_mesh show a GridCheck before anything per cell is
+/// allocated or computed: the planned grid (cell counts, cell size, origin; χ empty) and, to
+/// look for parameters that fit, the cell count a grid around the same solid would have with
+/// another cell size and parameters (the margin depends on h0 and a).
+template <int D>
+struct PlannedGrid {
+  const VoxelGrid<D>& grid;
+  std::function<GridIndex(double cell_size, const features::FeatureParameters& parameters)>
+      cells_with;
+};
+
+/// May throw to refuse a planned grid (apps/fem_command checks the run's memory with it).
+template <int D>
+using GridCheck = std::function<void(const PlannedGrid<D>& planned)>;
+
 /// Fills grid.chi from `inside` (called concurrently from several threads: it must be
 /// thread-safe). Throws InputError if samples_per_axis < 1.
 template <int D>
@@ -32,18 +47,22 @@ void fill_characteristic_function(VoxelGrid<D>& grid, const InsideTest<D>& insid
 
 /// A grid around an image whose pixels are squares (cubes) of side `pixel_size` [model
 /// units], the image occupying [0, size·pixel_size]; χ sampled from the pixel containing
-/// each sample point (outside the image: void). Cells need not match pixels.
+/// each sample point (outside the image: void). Cells need not match pixels. `check`, when
+/// set, sees the planned grid first (GridCheck).
 template <int D>
 VoxelGrid<D> grid_for_image(const BinaryImage<D>& image, double pixel_size, double cell_size,
                             const features::FeatureParameters& parameters, int samples_per_axis = 1,
-                            GridIndex max_cells = kDefaultMaxCells<D>);
+                            GridIndex max_cells = kDefaultMaxCells<D>,
+                            const GridCheck<D>& check = {});
 
 /// A grid around a closed, outward-oriented surface mesh (3-D), χ from the exact inside
 /// test of geometry/point_inside.hpp (points on the surface count as outside). Throws
 /// InputError if the mesh is not closed (prepare it with geometry's pipeline first).
+/// `check`, when set, sees the planned grid first (GridCheck).
 VoxelGrid<3> grid_for_mesh(const geometry::SurfaceMesh& mesh, double cell_size,
                            const features::FeatureParameters& parameters, int samples_per_axis = 1,
-                           GridIndex max_cells = kDefaultMaxCells<3>);
+                           GridIndex max_cells = kDefaultMaxCells<3>,
+                           const GridCheck<3>& check = {});
 
 extern template void fill_characteristic_function<2>(VoxelGrid<2>&, const InsideTest<2>&, int);
 extern template void fill_characteristic_function<3>(VoxelGrid<3>&, const InsideTest<3>&, int);

@@ -119,10 +119,25 @@ VoxelGrid<D> grid_around(const Eigen::Matrix<double, D, 1>& lo,
                          bool align_to_lo = false);
 
 /// Default limit on the number of cells of one grid, so that a mistyped cell size is refused
-/// before allocating instead of exhausting memory. A 3-D cell costs about 450 bytes over the
-/// whole run (χ, coefficient, s, CG and multigrid vectors, feature fields), a 2-D cell about
-/// 300: both limits correspond to roughly 4 GB. Callers with more memory pass a larger limit.
+/// before allocating instead of exhausting memory: at the measured cost per cell
+/// (kRunBytesPerCell) both limits correspond to about 3 GB. Callers with more memory pass a
+/// larger limit.
 template <int D>
 inline constexpr GridIndex kDefaultMaxCells = D == 2 ? 12'000'000 : 9'000'000;
+
+/// Peak memory of a whole `bemshape fem` run [bytes] on a grid of `cells` cells (χ,
+/// coefficient, load and solution with D columns, CG and multigrid vectors on every level,
+/// feature fields, output copies, and the process itself), for its --max-memory guard
+/// (apps/fem_command.cpp): kRunBaseBytes + kRunBytesPerCell<D> × cells. Measured peak RSS
+/// with OMP_NUM_THREADS=1 fits 10 MB + 285-290 bytes per cell in 3-D (a ball: 36³ cells 25 MB,
+/// 56³ 60 MB, 96³ 260 MB, 112³ 409 MB) and 15 MB + 215 bytes per cell in 2-D (an L-shaped
+/// PNG: 864² 175 MB, 1728² 656 MB); the constants are rounded up from these.
+inline constexpr double kRunBaseBytes = 16e6;
+template <int D>
+inline constexpr double kRunBytesPerCell = D == 2 ? 240.0 : 310.0;
+template <int D>
+double estimated_run_bytes(GridIndex cells) {
+  return kRunBaseBytes + kRunBytesPerCell<D> * static_cast<double>(cells);
+}
 
 }  // namespace bemshape::fem

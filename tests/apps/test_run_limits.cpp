@@ -5,6 +5,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <thread>
 
@@ -189,4 +190,78 @@ TEST_CASE("max-memory with units: too small is refused naming the option, bad un
   CHECK(r.exit_code == 0);
   r = run_bemshape("thickness '" + mesh + "' --h0 0.3 --max-edge 0.3 --max-memory 3 --quiet");
   CHECK(r.exit_code == 0);  // plain number: MB
+}
+
+namespace {
+
+/// The options a refusal message suggests: what follows "e.g. " up to ", or" or the end of
+/// the line ("" if there is none).
+std::string suggested_options(const std::string& message) {
+  const std::string key = "e.g. ";
+  const std::size_t at = message.find(key);
+  if (at == std::string::npos)
+    return "";
+  const std::size_t begin = at + key.size();
+  const std::size_t end = std::min(message.find(", or", begin), message.find('\n', begin));
+  return message.substr(begin, end - begin);
+}
+
+}  // namespace
+
+TEST_CASE("fem --max-memory: a grid that does not fit is refused, naming a --cell that fits") {
+  const std::string mesh = write_mesh(geometry::make_geodesic_sphere(0.5, 3), "fem_ball.stl");
+  const std::string out = scratch("fem_memory.vti");
+  const std::string prefix = "bemshape: error: " + mesh + ": the voxel FEM on ";
+  // Cells of 0.02 on a ball of diameter 1 (h0 = 20 cells, margin 24 cells): 112³ cells,
+  // 0.45 GB by the estimate of 16 MB + 310 bytes per cell.
+  Run r = run_bemshape("fem '" + mesh + "' --cell 0.02 --max-memory 100MB -o '" + out + "'");
+  CAPTURE(r.err);
+  CHECK(r.exit_code == 2);
+  CHECK_THAT(r.first_error_line(),
+             Catch::StartsWith(prefix) && Catch::Contains(" of size 0.02, --cell) needs 0.") &&
+                 Catch::Contains(" GB but only 0.1 GB may be used (--max-memory); use a larger "
+                                 "cell size, e.g. --cell "));
+  CHECK_THAT(r.err, !Catch::Contains("multigrid"));  // refused before the solver started
+  CHECK_FALSE(fs::exists(out));
+  // The suggestion fits the same budget.
+  std::string suggestion = suggested_options(r.first_error_line());
+  REQUIRE(suggestion.rfind("--cell ", 0) == 0);
+  r = run_bemshape("fem '" + mesh + "' " + suggestion + " --max-memory 100MB -o '" + out + "'");
+  CAPTURE(r.err);
+  CHECK(r.exit_code == 0);
+  CHECK(fs::exists(out));
+
+  // 20 MB: with h0 following the cell (20 cells) the margin alone needs more cells than
+  // that, so the suggestion keeps this run's h0 (0.4), which fits.
+  fs::remove(out);
+  r = run_bemshape("fem '" + mesh + "' --cell 0.02 --max-memory 20MB -o '" + out + "'");
+  CAPTURE(r.err);
+  CHECK(r.exit_code == 2);
+  CHECK_THAT(r.first_error_line(),
+             Catch::StartsWith(prefix) &&
+                 Catch::Contains("no cell size fits with the default h0 of 20 cells") &&
+                 Catch::Contains(" --h0 0.4, or raise --max-memory"));
+  suggestion = suggested_options(r.first_error_line());
+  r = run_bemshape("fem '" + mesh + "' " + suggestion + " --max-memory 20MB -o '" + out + "'");
+  CAPTURE(suggestion, r.err);
+  CHECK(r.exit_code == 0);
+  CHECK(fs::exists(out));
+
+  // 2-D: the L-shaped image at cells of 0.1 pixel is 464² cells (68 MB).
+  const std::string png = write_l_shape_png("fem_memory_l.png");
+  const std::string out_2d = scratch("fem_memory_l.vti");
+  r = run_bemshape("fem '" + png + "' --cell 0.1 --max-memory 30MB -o '" + out_2d + "'");
+  CAPTURE(r.err);
+  CHECK(r.exit_code == 2);
+  CHECK_THAT(r.first_error_line(),
+             Catch::Contains("(464 x 464 of size 0.1, --cell) needs 0.0677 GB but only 0.03 GB "
+                             "may be used (--max-memory); use a larger cell size, e.g. --cell "));
+  CHECK_FALSE(fs::exists(out_2d));
+  r = run_bemshape("fem '" + png + "' " + suggested_options(r.first_error_line()) +
+                   " --max-memory 30MB -o '" + out_2d + "'");
+  CAPTURE(r.err);
+  CHECK(r.exit_code == 0);
+  r = run_bemshape("fem '" + png + "' --cell 0.1 --max-memory 12XB -o '" + out_2d + "'");
+  CHECK(r.exit_code == 2);
+  CHECK_THAT(r.err, Catch::Contains("--max-memory '12XB': expected a positive size"));
 }
