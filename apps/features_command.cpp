@@ -32,9 +32,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-/// Largest number of evaluation points accepted. Each point costs one panel integral per
-/// solver face (Laplace and Yukawa): 10⁶ points on a 2000-face mesh are 4·10⁹ kernel
-/// integrals, tens of minutes on two cores — beyond that a coarser grid answers sooner.
+/// Largest number of evaluation points accepted. The treecode of bem::evaluate_potential
+/// costs about 1.2 ms of CPU per point on a 20,000-face part (docs/benchmarks.md,
+/// "Interior evaluation at many points"): 10⁶ points are about ten minutes on two free cores —
+/// beyond that a coarser grid answers sooner.
 constexpr double kMaxPoints = 1.0e6;
 
 struct FeaturesOptions {
@@ -168,7 +169,11 @@ void run_features(const FeaturesOptions& options, int& exit_code) {
   }
   report_progress(display.callback(), "evaluate", 0.0);
   const bem::PotentialField field = times.time("evaluate", [&] {
-    return bem::evaluate_potential(run.solver_mesh, run.solution, points, display.callback());
+    // The treecode's error tracks the solver's: no larger than the residual asked for.
+    bem::PotentialEvaluationOptions evaluation;
+    evaluation.treecode = bem::LaplaceTreecodeParameters::for_tolerance(options.solver.tolerance);
+    return bem::evaluate_potential(run.solver_mesh, run.solution, points, display.callback(),
+                                   evaluation);
   });
   features::FeatureParameters parameters;
   parameters.h0 = *options.h0;

@@ -5,6 +5,8 @@
 //   bench_fast_path sphere|plate|box FACES [dense|hmatrix|both] [--tolerance T] [--aca E]
 //                   [--leaf L] [--block B]
 //   bench_fast_path entry-costs FACES     (where a row of the operators spends its time)
+//   bench_fast_path interior sphere|box FACES POINTS [--solve] [--order P] [--theta T]
+//                   [--leaf L] [--negligible D] [--reference M] [--sweep]      (evaluate_potential on a grid: treecode vs direct)
 //
 // Fields: shape, faces, solver, times (mesh, assemble, solve, features; seconds), iterations,
 // residual, cpu_seconds (user + system of all threads for the solve and features),
@@ -219,8 +221,131 @@ int entry_costs(double faces) {
   return 0;
 }
 
+/// evaluate_potential at the nodes of a grid of about `points` nodes over the bounding box
+/// of a sphere or box of `faces` faces (enlarged by 5%, as `features --grid` covers the
+/// part): the tree sums (bem/hierarchical/laplace_treecode.hpp, yukawa_cutoff_sum.hpp)
+/// timed on every node, the direct sums over every panel on `reference` nodes spread over
+/// the grid, their cost extrapolated to all nodes and their results compared. The boundary
+/// data are the ball's closed form s = A·x inside (φ = A·x at the centroids, q = A·n) unless
+/// --solve asks for the H-matrix solution. One JSON line:
+///   seconds, cpu_seconds: the tree evaluation of all nodes (wall, user + system);
+///   laplace_panel_integrals, laplace_expansions, yukawa_panel_integrals: its work;
+///   direct_*: the same for the direct sums, extrapolated from the reference nodes;
+///   error: largest difference on the reference nodes, relative to the largest value there
+///   (s, gradient), absolute (winding), and the number of nodes whose inside flag differs.
+/// --sweep repeats the tree evaluation for several (p, θ) (the table behind
+/// LaplaceTreecodeParameters::for_tolerance), one line each, against one direct reference.
+int interior(int argc, char** argv) {
+  if (argc < 5) {
+    std::fprintf(stderr, "usage: bench_fast_path interior sphere|box FACES POINTS [--solve] "
+                         "[--order P] [--theta T] [--leaf L] [--negligible D] [--reference M] "
+                         "[--sweep]\n");
+    return 2;
+  }
+  const std::string shape = argv[2];
+  const Problem p = shape == "sphere" ? sphere(std::atof(argv[3])) : box(std::atof(argv[3]));
+  const double requested = std::atof(argv[4]);
+  bool solve = false, sweep = false;
+  long reference_points = 1000;
+  bem::PotentialEvaluationOptions options;
+  for (int i = 5; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--solve") solve = true;
+    else if (a == "--sweep") sweep = true;
+    else if (a == "--order" && i + 1 < argc) options.treecode.order = std::atoi(argv[++i]);
+    else if (a == "--theta" && i + 1 < argc) options.treecode.theta = std::atof(argv[++i]);
+    else if (a == "--reference" && i + 1 < argc) reference_points = std::atol(argv[++i]);
+    else if (a == "--leaf" && i + 1 < argc) options.leaf_size = std::atol(argv[++i]);
+    else if (a == "--negligible" && i + 1 < argc) options.yukawa_negligible = std::atof(argv[++i]);
+    else {
+      std::fprintf(stderr, "bench_fast_path: unknown argument %s\n", a.c_str());
+      return 2;
+    }
+  }
+  const auto parameters = bem::TransmissionParameters::from_shape(p.h0, kA);
+  bem::BoundarySolution solution;
+  if (solve) {
+    solution = bem::solve_transmission_hmatrix(p.mesh, parameters, {});
+  } else {
+    const double A = ref::ball_solution(ref::PdeParameters{p.h0, kA}, 0.5).A;
+    solution.phi = A * p.mesh.face_centroids();
+    solution.q = A * p.mesh.face_normals();
+    solution.parameters = parameters;
+  }
+  // The grid: n³ nodes over the bounding box enlarged by 5%.
+  const Eigen::Vector3d lo = p.mesh.vertices().colwise().minCoeff().transpose();
+  const Eigen::Vector3d hi = p.mesh.vertices().colwise().maxCoeff().transpose();
+  const Eigen::Vector3d centre = 0.5 * (lo + hi), half = 0.525 * (hi - lo);
+  const long n = std::max(2L, std::lround(std::cbrt(requested)));
+  Eigen::MatrixX3d grid(n * n * n, 3);
+  for (long i = 0, row = 0; i < n; ++i)
+    for (long j = 0; j < n; ++j)
+      for (long k = 0; k < n; ++k, ++row)
+        grid.row(row) = (centre + half.cwiseProduct(Eigen::Vector3d(double(i), double(j), double(k)) *
+                                                        (2.0 / double(n - 1)) -
+                                                    Eigen::Vector3d::Ones()))
+                            .transpose();
+  // The direct sums on every (rows / reference)-th node.
+  const long m = std::min<long>(reference_points, long(grid.rows()));
+  const long stride = long(grid.rows()) / m;
+  Eigen::MatrixX3d sample(m, 3);
+  for (long i = 0; i < m; ++i) sample.row(i) = grid.row(i * stride);
+  bem::PotentialEvaluationOptions direct_options;
+  direct_options.direct = true;
+  const double cpu1 = cpu_seconds();
+  const auto t1 = Clock::now();
+  const bem::PotentialField direct = bem::evaluate_potential(p.mesh, solution, sample, {}, direct_options);
+  const double scale = double(grid.rows()) / double(m);
+  const double direct_wall = seconds(t1) * scale, direct_cpu = (cpu_seconds() - cpu1) * scale;
+
+  std::vector<bem::LaplaceTreecodeParameters> settings{options.treecode};
+  if (sweep)
+    settings = {{4, 0.3}, {6, 0.3}, {8, 0.3}, {10, 0.3}, {12, 0.3}, {14, 0.3},
+                {8, 0.5}, {10, 0.5}, {14, 0.5}, {10, 0.4}, {12, 0.4}};
+  for (const bem::LaplaceTreecodeParameters& setting : settings) {
+    options.treecode = setting;
+    const double cpu0 = cpu_seconds();
+    const auto t0 = Clock::now();
+    const bem::PotentialField fast = bem::evaluate_potential(p.mesh, solution, grid, {}, options);
+    const double wall = seconds(t0), cpu = cpu_seconds() - cpu0;
+    long inside = 0;
+    for (const char c : fast.inside) inside += c;
+    double ds = 0, dg = 0, dw = 0, smax = 0, gmax = 0;
+    long flips = 0;
+    for (long i = 0; i < m; ++i) {
+      const long r = i * stride;
+      smax = std::max(smax, direct.s.row(i).norm());
+      gmax = std::max(gmax, direct.gradient.row(i).norm());
+      ds = std::max(ds, (direct.s.row(i) - fast.s.row(r)).norm());
+      dg = std::max(dg, (direct.gradient.row(i) - fast.gradient.row(r)).norm());
+      dw = std::max(dw, std::abs(direct.winding(i) - fast.winding(r)));
+      flips += direct.inside[size_t(i)] != fast.inside[size_t(r)];
+    }
+    std::printf("{\"shape\": \"%s\", \"faces\": %ld, \"points\": %ld, \"inside\": %ld, "
+                "\"data\": \"%s\", \"order\": %d, \"theta\": %.3g, \"leaf\": %ld, "
+                "\"negligible\": %.0e, \"seconds\": %.2f, \"cpu_seconds\": %.2f, "
+                "\"laplace_panel_integrals\": %.4g, \"laplace_expansions\": %.4g, "
+                "\"yukawa_panel_integrals\": %.4g, \"reference_points\": %ld, "
+                "\"direct_seconds\": %.4g, \"direct_cpu_seconds\": %.4g, "
+                "\"direct_laplace_panel_integrals\": %.4g, \"direct_yukawa_panel_integrals\": %.4g, "
+                "\"error\": {\"s\": %.2e, \"gradient\": %.2e, \"winding\": %.2e, "
+                "\"inside_flips\": %ld}, \"moment_mb\": %.1f, \"peak_rss_mb\": %.1f}\n",
+                shape.c_str(), long(p.mesh.num_faces()), long(grid.rows()), inside,
+                solve ? "hmatrix solution" : "closed form", setting.order, setting.theta,
+                long(options.leaf_size), options.yukawa_negligible, wall, cpu,
+                double(fast.cost.laplace_panel_integrals), double(fast.cost.laplace_expansions),
+                double(fast.cost.yukawa_panel_integrals), m, direct_wall, direct_cpu,
+                double(direct.cost.laplace_panel_integrals) * scale,
+                double(direct.cost.yukawa_panel_integrals) * scale, ds / smax, dg / gmax, dw, flips,
+                double(fast.cost.moment_bytes) / 1e6, double(peak_resident_bytes()) / 1e6);
+    std::fflush(stdout);
+  }
+  return 0;
+}
+
 int main(int argc, char** argv) {
   if (argc == 3 && std::string(argv[1]) == "entry-costs") return entry_costs(std::atof(argv[2]));
+  if (argc >= 2 && std::string(argv[1]) == "interior") return interior(argc, argv);
   if (argc < 3) {
     std::fprintf(stderr, "usage: bench_fast_path sphere|plate|box FACES [dense|hmatrix|both] "
                          "[--tolerance T] [--aca E] [--leaf L] [--block B]\n");
