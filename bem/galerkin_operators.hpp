@@ -148,19 +148,20 @@ inline std::optional<TouchingOrder> touching_order(const Panel& test, const Pane
 }
 
 /// Gauss points per direction of the Sauter–Schwab rule for a touching pair of `kind`, by the
-/// kernel's κ·diameter (0 for Laplace). Measured against the same rule with 16 points on a
-/// sphere mesh and on the right-angled edges of a box (tests/bem/test_sauter_schwab_rules.cpp,
-/// docs/quadrature.md): the single layer is within 3e−5 relative and the double layer within
-/// 1e−4 of |V|/diameter, typically 1e−6; the subdivided outer rule used for these pairs
-/// before was off by 2e−3. The worst case is K across a right-angled edge. The Yukawa
-/// exponential needs more points as κ·diameter grows, most of all for vertex neighbours,
-/// whose points lie up to two diameters apart.
+/// kernel's κ·diameter (0 for Laplace; the larger panel's diameter). Measured against the
+/// same rule with 16 points on a sphere mesh and on the right-angled edges of a box
+/// (tests/bem/test_sauter_schwab_rules.cpp, docs/quadrature.md): the single layer is within
+/// 6e−6 relative and the double layer within 7e−5 of |V|/diameter, the aim being about 1e−5,
+/// far below the discretisation error; the subdivided outer rule used for these pairs before
+/// was off by 2e−3 on coincident pairs. The Yukawa exponential needs more points as
+/// κ·diameter grows, most of all for vertex neighbours, whose points lie up to two diameters
+/// apart.
 inline int touching_rule_points(TouchingKind kind, double kappa_diameter) {
   struct Row {
     double max_kappa_diameter;
     int coincident, common_edge, common_vertex;
   };
-  static constexpr Row table[] = {{0.0, 6, 6, 5}, {3.0, 6, 7, 6}, {6.0, 7, 7, 7}, {12.0, 8, 8, 9}};
+  static constexpr Row table[] = {{0.0, 6, 6, 5}, {3.0, 6, 6, 5}, {6.0, 7, 7, 6}, {12.0, 8, 7, 9}};
   for (const Row& row : table)
     if (kappa_diameter <= row.max_kappa_diameter)
       return kind == TouchingKind::coincident    ? row.coincident

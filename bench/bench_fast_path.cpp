@@ -175,7 +175,8 @@ int entry_costs(double faces) {
   const char* names[] = {"touching", "near (eta < 2)", "middle (eta 2-4)", "attenuated", "far"};
   double yukawa_time[5] = {}, laplace_time[5] = {};
   long count[5] = {}, dropped = 0;
-  double checksum = 0.0;  // printed, so the compiler cannot drop an entry whose value is unused
+  double checksum = 0.0;
+  double subdivided_yukawa_time = 0.0, subdivided_laplace_time = 0.0;  // printed, so the compiler cannot drop an entry whose value is unused
   const int rows = 50;
   for (Eigen::Index i = 0; i < rows; ++i)
     for (Eigen::Index j = 0; j < Eigen::Index(panels.size()); ++j) {
@@ -197,6 +198,20 @@ int entry_costs(double faces) {
       const auto l = laplace.entry(i, j);
       const double tl = thread_cpu_seconds() - t0;
       checksum += l.single_layer + l.double_layer + y.single_layer + y.double_layer;
+      if (c == 0) {
+        // The scheme touching pairs used before the Sauter–Schwab rules, for comparison: the
+        // test panel split into 4 (16 when κ·diameter > 4) × the 6-point rule, times the
+        // polar panel integrals of the trial panel.
+        const int levels = parameters.kappa * a.diameter <= 4.0 ? 1 : 2;
+        const auto& rule = bem::symmetric_triangle_rule(4);
+        t0 = thread_cpu_seconds();
+        const auto yo = yukawa.outer_rule_entry(a, b, levels, rule);
+        subdivided_yukawa_time += thread_cpu_seconds() - t0;
+        t0 = thread_cpu_seconds();
+        const auto lo = laplace.outer_rule_entry(a, b, 1, rule);
+        subdivided_laplace_time += thread_cpu_seconds() - t0;
+        checksum += yo.single_layer + lo.single_layer;
+      }
       if (y.single_layer == 0.0 && y.double_layer == 0.0 && attenuation < bem::YukawaAttenuation::negligible) {
         ++dropped;
         laplace_time[4] += tl;
@@ -215,6 +230,13 @@ int entry_costs(double faces) {
     const double y = count[c] ? 1e6 * yukawa_time[c] / double(count[c]) : 0.0;
     const double l = count[c] ? 1e6 * laplace_time[c] / double(count[c]) : 0.0;
     std::printf("| %s | %.1f | %.2f | %.0f | %.2f | %.0f |\n", names[c], per_row, y, y * per_row, l, l * per_row);
+  }
+  if (count[0] > 0) {
+    const double per_row = double(count[0]) / rows;
+    const double y = 1e6 * subdivided_yukawa_time / double(count[0]);
+    const double l = 1e6 * subdivided_laplace_time / double(count[0]);
+    std::printf("| touching, subdivided outer rule (before) | %.1f | %.2f | %.0f | %.2f | %.0f |\n",
+                per_row, y, y * per_row, l, l * per_row);
   }
   std::printf("(far includes %.1f pairs per row whose Yukawa entry is dropped; checksum %.6e)\n",
               double(dropped) / rows, checksum);
