@@ -12,6 +12,8 @@
 #include <iterator>
 #include <string>
 
+#include <unistd.h>
+
 #include "core/errors.hpp"
 #include "geometry/mesh_io.hpp"
 #include "geometry/vertex_welding.hpp"
@@ -31,9 +33,11 @@ std::string file_bytes(const fs::path& path) {
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
-/// Writes `bytes` to a temporary file with `extension` and returns its path.
+/// Writes `bytes` to a temporary file with `extension` and returns its path. The name carries
+/// the process id: ctest runs the test cases as parallel processes, which must not share a file.
 fs::path write_file(const std::string& bytes, const std::string& extension) {
-  const fs::path path = fs::temp_directory_path() / ("bemshape_test_reader" + extension);
+  const fs::path path = fs::temp_directory_path() /
+                        ("bemshape_test_reader_" + std::to_string(::getpid()) + extension);
   std::ofstream(path, std::ios::binary | std::ios::trunc)
       .write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
   return path;
