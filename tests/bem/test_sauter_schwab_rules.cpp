@@ -113,57 +113,12 @@ EntryError error(const Entry& e, const Entry& reference, double diameter) {
 
 }  // namespace
 
-TEST_CASE("touching Galerkin entries converge and the production rules are within 2e-4 of the limit") {
-  // A sphere (panels meeting at small angles) and a box (right-angled edges and corners).
-  for (const auto& mesh : {bemshape::geometry::make_geodesic_sphere(0.5, 8),
-                           bemshape::geometry::make_box(Eigen::Vector3d(0, 0, 0),
-                                                        Eigen::Vector3d(1, 0.5, 0.3), 0.2)}) {
-    const auto panels = make_panels(mesh);
-    const double diameter = panels[0].diameter;
-    for (const double kd : {0.0, 1.0, 3.0, 6.0, 12.0}) {
-      const auto check = [&](const auto& op) {
-        for (const auto& [j, k] : touching_pairs(panels)) {
-          const Panel& test = panels[j];
-          const Panel& trial = panels[k];
-          const TouchingOrder order = *touching_order(test, trial);
-          const auto limit = op.touching_entry(test, trial, order, sauter_schwab_rule(order.kind, 16));
-          const auto next = op.touching_entry(test, trial, order, sauter_schwab_rule(order.kind, 14));
-          const EntryError converged = error(next, limit, diameter);
-          const auto production = op.entry(static_cast<Eigen::Index>(j), static_cast<Eigen::Index>(k));
-          const EntryError e = error(production, limit, diameter);
-          INFO("kappa*diameter " << kd << ", kind " << int(order.kind) << ": V error " << e.single_layer
-                                 << ", K error " << e.double_layer);
-          CHECK(converged.single_layer < 1e-8);  // 14 and 16 points agree: the limit is converged
-          CHECK(converged.double_layer < 1e-7);
-          CHECK(e.single_layer < 2e-4);
-          CHECK(e.double_layer < 2e-4);
-          // An independent scheme (a subdivided outer rule × the exact radial inner integral)
-          // approaches the same limit as its outer rule is refined.
-          const auto coarse = op.outer_rule_entry(test, trial, 1, symmetric_triangle_rule(4));
-          const auto fine = op.outer_rule_entry(test, trial, 3, symmetric_triangle_rule(4));
-          const EntryError coarse_error = error(coarse, limit, diameter);
-          const EntryError fine_error = error(fine, limit, diameter);
-          CHECK(fine_error.single_layer < 5e-3);
-          CHECK(fine_error.single_layer < coarse_error.single_layer / 4.0);
-          if (order.kind != TouchingKind::coincident) {
-            CHECK(fine_error.double_layer < 5e-3);
-            CHECK(fine_error.double_layer < coarse_error.double_layer / 4.0);
-          }
-        }
-      };
-      if (kd == 0.0)
-        check(GalerkinOperators(LaplaceKernel{}, panels));
-      else
-        check(GalerkinOperators(YukawaKernel{kd / diameter}, panels));
-    }
-  }
-}
-
-// Prints the table of docs/quadrature.md ("Touching panels"): the production rules' errors
-// against the 16-point limit, and the errors of the subdivided outer rule used before.
-//   build/tests/bem/test_bem "[.calibration]" -c "touching"
-TEST_CASE("touching entry errors by kappa*diameter", "[.calibration]") {
-  const char* mesh_names[] = {"sphere", "box"};
+/// Calls visit(mesh_name, κ·diameter, operators, panels) for a geodesic sphere (panels meeting
+/// at small angles) and a box (right-angled edges and corners), with the Laplace kernel
+/// (κ·diameter 0) and the Yukawa kernel at κ·diameter 1, 3, 6 and 12 (diameter of panel 0).
+template <class Visit>
+void for_each_kernel_and_mesh(const Visit& visit) {
+  const char* names[] = {"sphere", "box"};
   int m = 0;
   for (const auto& mesh : {bemshape::geometry::make_geodesic_sphere(0.5, 8),
                            bemshape::geometry::make_box(Eigen::Vector3d(0, 0, 0),
@@ -171,29 +126,69 @@ TEST_CASE("touching entry errors by kappa*diameter", "[.calibration]") {
     const auto panels = make_panels(mesh);
     const double diameter = panels[0].diameter;
     for (const double kd : {0.0, 1.0, 3.0, 6.0, 12.0}) {
-      const auto print = [&](const auto& op) {
-        for (const auto& [j, k] : touching_pairs(panels)) {
-          const TouchingOrder order = *touching_order(panels[j], panels[k]);
-          const auto limit = op.touching_entry(panels[j], panels[k], order, sauter_schwab_rule(order.kind, 16));
-          const EntryError e = error(op.entry(Eigen::Index(j), Eigen::Index(k)), limit, diameter);
-          auto old = op.outer_rule_entry(panels[j], panels[k], kd <= 4.0 ? 1 : 2, symmetric_triangle_rule(4));
-          if (j == k) old.double_layer = 0.0;
-          const EntryError o = error(old, limit, diameter);
-          std::printf("| %s | %4.1f | %s | %d | %.1e | %.1e | %.1e | %.1e |\n", mesh_names[m], kd,
-                      order.kind == TouchingKind::coincident    ? "coincident"
-                      : order.kind == TouchingKind::common_edge ? "edge"
-                                                                : "vertex",
-                      touching_rule_points(order.kind, op.kernel().kappa() *
-                                                           std::max(panels[j].diameter, panels[k].diameter)),
-                      e.single_layer, e.double_layer,
-                      o.single_layer, o.double_layer);
-        }
-      };
       if (kd == 0.0)
-        print(GalerkinOperators(LaplaceKernel{}, panels));
+        visit(names[m], kd, GalerkinOperators(LaplaceKernel{}, panels), panels);
       else
-        print(GalerkinOperators(YukawaKernel{kd / diameter}, panels));
+        visit(names[m], kd, GalerkinOperators(YukawaKernel{kd / diameter}, panels), panels);
     }
     ++m;
   }
+}
+
+TEST_CASE("touching Galerkin entries converge and the production rules are within 2e-4 of the limit") {
+  for_each_kernel_and_mesh([](const char*, double kd, const auto& op, const std::vector<Panel>& panels) {
+    const double diameter = panels[0].diameter;
+    for (const auto& [j, k] : touching_pairs(panels)) {
+      const Panel& test = panels[j];
+      const Panel& trial = panels[k];
+      const TouchingOrder order = *touching_order(test, trial);
+      const auto limit = op.touching_entry(test, trial, order, sauter_schwab_rule(order.kind, 16));
+      const auto next = op.touching_entry(test, trial, order, sauter_schwab_rule(order.kind, 14));
+      const EntryError converged = error(next, limit, diameter);
+      const auto production = op.entry(static_cast<Eigen::Index>(j), static_cast<Eigen::Index>(k));
+      const EntryError e = error(production, limit, diameter);
+      INFO("kappa*diameter " << kd << ", kind " << int(order.kind) << ": V error " << e.single_layer
+                             << ", K error " << e.double_layer);
+      CHECK(converged.single_layer < 1e-8);  // 14 and 16 points agree: the limit is converged
+      CHECK(converged.double_layer < 1e-7);
+      CHECK(e.single_layer < 2e-4);
+      CHECK(e.double_layer < 2e-4);
+      // An independent scheme (a subdivided outer rule × the exact radial inner integral)
+      // approaches the same limit as its outer rule is refined.
+      const auto coarse = op.outer_rule_entry(test, trial, 1, symmetric_triangle_rule(4));
+      const auto fine = op.outer_rule_entry(test, trial, 3, symmetric_triangle_rule(4));
+      const EntryError coarse_error = error(coarse, limit, diameter);
+      const EntryError fine_error = error(fine, limit, diameter);
+      CHECK(fine_error.single_layer < 5e-3);
+      CHECK(fine_error.single_layer < coarse_error.single_layer / 4.0);
+      if (order.kind != TouchingKind::coincident) {
+        CHECK(fine_error.double_layer < 5e-3);
+        CHECK(fine_error.double_layer < coarse_error.double_layer / 4.0);
+      }
+    }
+  });
+}
+
+// Prints the table of docs/quadrature.md ("Touching panels"): the production rules' errors
+// against the 16-point limit, and the errors of the subdivided outer rule used before.
+//   build/tests/bem/test_bem "touching entry errors by kappa*diameter"
+TEST_CASE("touching entry errors by kappa*diameter", "[.calibration]") {
+  for_each_kernel_and_mesh([](const char* mesh, double kd, const auto& op, const std::vector<Panel>& panels) {
+    const double diameter = panels[0].diameter;
+    for (const auto& [j, k] : touching_pairs(panels)) {
+      const TouchingOrder order = *touching_order(panels[j], panels[k]);
+      const auto limit = op.touching_entry(panels[j], panels[k], order, sauter_schwab_rule(order.kind, 16));
+      const EntryError e = error(op.entry(Eigen::Index(j), Eigen::Index(k)), limit, diameter);
+      // The old scheme; outer_rule_entry zeroes the self pair's double layer itself.
+      const auto old = op.outer_rule_entry(panels[j], panels[k], kd <= 4.0 ? 1 : 2, symmetric_triangle_rule(4));
+      const EntryError o = error(old, limit, diameter);
+      std::printf("| %s | %4.1f | %s | %d | %.1e | %.1e | %.1e | %.1e |\n", mesh, kd,
+                  order.kind == TouchingKind::coincident    ? "coincident"
+                  : order.kind == TouchingKind::common_edge ? "edge"
+                                                            : "vertex",
+                  touching_rule_points(order.kind, op.kernel().kappa() *
+                                                       std::max(panels[j].diameter, panels[k].diameter)),
+                  e.single_layer, e.double_layer, o.single_layer, o.double_layer);
+    }
+  });
 }
