@@ -46,8 +46,9 @@ std::uint64_t dense_budget_bytes(std::uint64_t max_memory_bytes) {
 
 }  // namespace
 
-BoundarySolveRun prepare_and_solve(const BoundarySolveSetup& setup, StageTimes& times,
+BoundarySolveRun prepare_and_solve(const BoundarySolveSetup& given, StageTimes& times,
                                    const ProgressCallback& progress) {
+  BoundarySolveSetup setup = given;  // its --max-memory shrinks by what check_input holds
   const auto parameters = bem::TransmissionParameters::from_shape(setup.h0, setup.a);
   if (!(setup.sharp_angle_degrees >= 0.0 && setup.sharp_angle_degrees < 180.0))
     throw InputError("--sharp-angle must be in [0, 180) degrees, got " +
@@ -59,8 +60,11 @@ BoundarySolveRun prepare_and_solve(const BoundarySolveSetup& setup, StageTimes& 
   BoundarySolveRun run;
   run.input =
       times.time("read", [&] { return geometry::prepare_mesh_file(setup.input, {}, progress); });
-  if (setup.check_input)
-    setup.check_input(run.input);
+  if (setup.check_input) {
+    const std::uint64_t held = setup.check_input(run.input);
+    if (setup.max_memory_bytes > 0)
+      setup.max_memory_bytes = setup.max_memory_bytes > held ? setup.max_memory_bytes - held : 1;
+  }
   if (setup.max_edge) {
     run.max_edge = *setup.max_edge;
     run.max_edge_rule = "--max-edge";
@@ -92,6 +96,9 @@ BoundarySolveRun prepare_and_solve(const BoundarySolveSetup& setup, StageTimes& 
     options.max_memory_bytes = setup.max_memory_bytes;
     try {
       run.solution = bem::solve_transmission_hmatrix(run.solver_mesh, parameters, options, progress);
+    } catch (const ResourceError& refused) {
+      // The solver's estimate was over the budget before assembly: name the input too.
+      throw ResourceError(setup.input + ": " + refused.what());
     } catch (const std::bad_alloc&) {
       // The estimate checked before assembly was low for this part (ranks, near field).
       throw ResourceError(setup.input + ": the hierarchical-matrix BEM solver ran out of memory for " +

@@ -47,8 +47,10 @@ struct BoundarySolveSetup {
   std::uint64_t max_memory_bytes = 0;  ///< --max-memory; 0 = what the machine has
   SolverChoice solver;                 ///< --solver, --tolerance
   /// Called after reading, before refining and solving (e.g. to refuse an absurd request
-  /// that depends on the part's size before the expensive stages). May be empty.
-  std::function<void(const geometry::PreparedMesh&)> check_input;
+  /// that depends on the part's size before the expensive stages). Returns the bytes it
+  /// keeps allocated through the solve, which come off --max-memory for the BEM (when
+  /// given). May be empty.
+  std::function<std::uint64_t(const geometry::PreparedMesh&)> check_input;
 };
 
 struct BoundarySolveRun {

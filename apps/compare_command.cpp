@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -25,6 +26,7 @@
 #include "apps/stage_times.hpp"
 #include "apps/text_histogram.hpp"
 #include "apps/thickness_statistics.hpp"
+#include "apps/voxel_memory_check.hpp"
 #include "bem/potential_evaluation.hpp"
 #include "core/errors.hpp"
 #include "features/point_features.hpp"
@@ -67,6 +69,7 @@ struct CompareOptions {
   std::string report_path;
   int threads = 0;
   bool quiet = false;
+  std::uint64_t max_memory_bytes = 0;  ///< --max-memory; 0: the machine's memory only
 };
 
 /// The voxel side of the comparison, built right after the input is read (so that a cell
@@ -106,8 +109,12 @@ VoxelSide voxelise_and_pick_probes(const CompareOptions& options, const geometry
                                    const features::FeatureParameters& parameters,
                                    StageTimes& times) {
   VoxelSide side;
-  side.grid =
-      times.time("voxelise", [&] { return fem::grid_for_mesh(mesh, options.cell, parameters); });
+  const VoxelMemoryBudget budget{options.input, options.cell, options.h0.has_value(),
+                                 options.max_memory_bytes};
+  side.grid = times.time("voxelise", [&] {
+    return fem::grid_for_mesh(mesh, options.cell, parameters, 1, fem::kDefaultMaxCells<3>,
+                              voxel_grid_memory_check<3>(budget, parameters));
+  });
   std::vector<fem::GridIndex> solid;
   for (fem::GridIndex e = 0; e < side.grid.num_cells(); ++e)
     if (side.grid.chi[static_cast<std::size_t>(e)] >= fem::kSolidFraction)
@@ -347,9 +354,13 @@ void run_compare(const CompareOptions& options, int& exit_code) {
   setup.max_edge = options.max_edge;
   setup.sharp_angle_degrees = options.sharp_angle;
   setup.solver = options.solver;
+  setup.max_memory_bytes = options.max_memory_bytes;
   setup.check_input = [&](const geometry::PreparedMesh& input) {
     report_progress(display.callback(), "voxelise", 0.0);
     c.voxels = voxelise_and_pick_probes(options, input.mesh, parameters, times);
+    // The two solves run one after the other, each within --max-memory, but the grid's χ
+    // stays allocated through the BEM solve.
+    return static_cast<std::uint64_t>(c.voxels.grid.chi.size() * sizeof(float));
   };
   c.run = prepare_and_solve(setup, times, display.callback());
 
@@ -427,6 +438,7 @@ void register_compare_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--threads", options->threads, "Number of threads (default: all cores)");
   cmd->add_flag("--quiet", options->quiet, "No progress on stderr");
   add_timeout_option(*cmd);
+  add_max_memory_option(*cmd, options->max_memory_bytes);
   cmd->callback([options, &exit_code] { run_compare(*options, exit_code); });
 }
 

@@ -159,6 +159,7 @@ void run_features(const FeaturesOptions& options, int& exit_code) {
   if (grid_mode)
     setup.check_input = [&options](const geometry::PreparedMesh& input) {
       refuse_large_grid(options, input);
+      return std::uint64_t{0};  // the grid's points are allocated after the solve
     };
   const BoundarySolveRun run = prepare_and_solve(setup, times, display.callback());
 

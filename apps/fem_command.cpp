@@ -7,7 +7,6 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -15,8 +14,8 @@
 #include "apps/output/png_writer.hpp"
 #include "apps/output/vti_writer.hpp"
 #include "apps/run_limits.hpp"
+#include "apps/voxel_memory_check.hpp"
 #include "core/errors.hpp"
-#include "core/memory.hpp"
 #include "fem/binary_image.hpp"
 #include "fem/characteristic_function.hpp"
 #include "fem/shape_feature_solver.hpp"
@@ -36,68 +35,6 @@ struct FemOptions {
   int samples = 1;
   std::uint64_t max_memory_bytes = 0;  // --max-memory; 0: the machine's memory only
 };
-
-/// Step by which the suggested --cell grows while looking for one whose grid fits, and the
-/// most steps taken (a factor of 1.1^100 ≈ 10^4 beyond the cell^-D guess).
-constexpr double kCellSuggestionStep = 1.1;
-constexpr int kCellSuggestionSteps = 100;
-
-/// Refuses, before χ or anything per cell is allocated, a grid whose FEM run would not fit
-/// the memory budget (core/memory.hpp: the machine's available memory, `ulimit -v`,
-/// --max-memory); the estimate is fem::estimated_run_bytes<D>. The message suggests
-/// the smallest --cell (in steps of 10 %) whose grid fits. Without --h0, h0 follows the cell
-/// (20 cells) and so does the margin of 1.2·h0 around the part, so below a certain budget
-/// no cell size fits; the suggestion then keeps this run's h0 (--cell X --h0 H).
-template <int D>
-fem::GridCheck<D> memory_check(const FemOptions& o, const features::FeatureParameters& p) {
-  return [&o, p](const fem::PlannedGrid<D>& planned) {
-    const auto bytes = fem::estimated_run_bytes<D>;
-    const double needed = bytes(planned.grid.num_cells());
-    const auto budget = static_cast<double>(memory_budget_bytes(o.max_memory_bytes));
-    if (budget == 0.0 || needed <= budget)
-      return;
-    // Candidates rounded up to the 3 digits the message prints.
-    const auto round_up = [](double x) {
-      const double unit = std::pow(10.0, std::floor(std::log10(x)) - 2.0);
-      return std::ceil(x / unit) * unit;
-    };
-    // The smallest cell that fits, h0 following it or fixed; 0 if none within the steps.
-    // The cell count falls like cell^-D at most: the search starts there.
-    const auto fitting_cell = [&](bool h0_follows_cell) {
-      double cell = round_up(o.cell * std::pow(needed / budget, 1.0 / D));
-      for (int step = 0; step < kCellSuggestionSteps; ++step) {
-        features::FeatureParameters q = p;
-        if (h0_follows_cell)
-          q.h0 = kDefaultH0Cells * cell;
-        if (bytes(planned.cells_with(cell, q)) <= budget)
-          return cell;
-        cell = round_up(cell * kCellSuggestionStep);
-      }
-      return 0.0;
-    };
-    std::ostringstream what, instead;
-    what.precision(3);
-    instead.precision(3);
-    what << o.input << ": the voxel FEM on " << planned.grid.num_cells() << " cells (";
-    for (int d = 0; d < D; ++d)
-      what << (d ? " x " : "") << planned.grid.cells[d];
-    what << " of size " << o.cell << ", --cell)";
-    const bool h0_given = o.h0 > 0.0;
-    double cell = fitting_cell(!h0_given);
-    if (cell > 0.0) {
-      instead << "use a larger cell size, e.g. --cell " << cell;
-    } else if (!h0_given && (cell = fitting_cell(false)) > 0.0) {
-      instead << "no cell size fits with the default h0 of " << kDefaultH0Cells
-              << " cells (the margin around the part grows with it); keep this run's h0 with a "
-                 "larger cell size, e.g. --cell "
-              << cell << " --h0 " << p.h0 << ", or raise --max-memory";
-    } else {
-      instead << "raise --max-memory or use a machine with more memory";
-    }
-    require_memory(static_cast<std::uint64_t>(needed), what.str(), instead.str(),
-                   o.max_memory_bytes);
-  };
-}
 
 ProgressCallback stderr_progress() {
   auto last = std::make_shared<std::pair<std::string, int>>("", -1);
@@ -246,31 +183,36 @@ void run(const FemOptions& o) {
   features::validate(p);
   if (!(o.cell > 0.0))
     throw InputError("--cell must be a positive length");
+  const VoxelMemoryBudget budget{o.input, o.cell, o.h0 > 0.0, o.max_memory_bytes};
   std::string ext = input.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return std::tolower(c); });
   if (fs::is_directory(input) || !o.dims.empty()) {
     fem::BinaryImage<3> volume;
     if (fs::is_directory(input)) {
-      volume = fem::read_png_stack(input, o.invert);
+      volume = fem::read_png_stack(input, o.invert, image_memory_check<3>(budget));
     } else {
       if (o.dims.size() != 3)
         throw InputError("--dims needs three numbers NX,NY,NZ");
-      volume = fem::read_raw_volume(input, {o.dims[0], o.dims[1], o.dims[2]}, o.invert);
+      volume = fem::read_raw_volume(input, {o.dims[0], o.dims[1], o.dims[2]}, o.invert,
+                                    image_memory_check<3>(budget));
     }
-    solve_and_write<3>(fem::grid_for_image<3>(volume, o.pixel, o.cell, p, o.samples,
-                                              fem::kDefaultMaxCells<3>, memory_check<3>(o, p)),
-                       p, out);
+    solve_and_write<3>(
+        fem::grid_for_image<3>(volume, o.pixel, o.cell, p, o.samples, fem::kDefaultMaxCells<3>,
+                               voxel_grid_memory_check<3>(budget, p)),
+        p, out);
   } else if (ext == ".png") {
-    const auto image = fem::read_png_image(input, o.invert);
-    solve_and_write<2>(fem::grid_for_image<2>(image, o.pixel, o.cell, p, o.samples,
-                                              fem::kDefaultMaxCells<2>, memory_check<2>(o, p)),
-                       p, out);
+    const auto image = fem::read_png_image(input, o.invert, image_memory_check<2>(budget));
+    solve_and_write<2>(
+        fem::grid_for_image<2>(image, o.pixel, o.cell, p, o.samples, fem::kDefaultMaxCells<2>,
+                               voxel_grid_memory_check<2>(budget, p)),
+        p, out);
   } else {
     const auto prepared = geometry::prepare_mesh_file(input);
-    solve_and_write<3>(fem::grid_for_mesh(prepared.mesh, o.cell, p, o.samples,
-                                          fem::kDefaultMaxCells<3>, memory_check<3>(o, p)),
-                       p, out);
+    solve_and_write<3>(
+        fem::grid_for_mesh(prepared.mesh, o.cell, p, o.samples, fem::kDefaultMaxCells<3>,
+                           voxel_grid_memory_check<3>(budget, p)),
+        p, out);
   }
 }
 

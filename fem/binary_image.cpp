@@ -20,7 +20,7 @@ struct PngPixels {
   std::vector<std::uint8_t> grey;  // row 0 = top row
 };
 
-PngPixels read_grey_png(const std::filesystem::path& path) {
+PngPixels read_grey_png(const std::filesystem::path& path, const PixelCheck& check) {
   const std::string name = path.string();
   if (!std::filesystem::is_regular_file(path))
     throw InputError(name + ": no such file; give the path of a PNG image");
@@ -36,6 +36,14 @@ PngPixels read_grey_png(const std::filesystem::path& path) {
     throw ResourceError(name + ": the PNG header claims " + std::to_string(width) + "×" +
                         std::to_string(height) + " pixels, more than the limit of " +
                         std::to_string(kMaxImagePixels) + "; downsample the image");
+  }
+  if (check) {
+    try {
+      check(width * height);
+    } catch (...) {
+      png_image_free(&image);
+      throw;
+    }
   }
   image.format = PNG_FORMAT_GRAY;  // libpng composites alpha onto the background below
   PngPixels pixels;
@@ -53,8 +61,9 @@ PngPixels read_grey_png(const std::filesystem::path& path) {
 
 }  // namespace
 
-BinaryImage<2> read_png_image(const std::filesystem::path& path, bool invert) {
-  const PngPixels pixels = read_grey_png(path);
+BinaryImage<2> read_png_image(const std::filesystem::path& path, bool invert,
+                              const PixelCheck& check) {
+  const PngPixels pixels = read_grey_png(path, check);
   BinaryImage<2> image;
   image.size = {pixels.width, pixels.height};
   image.solid.resize(pixels.grey.size());
@@ -69,7 +78,8 @@ BinaryImage<2> read_png_image(const std::filesystem::path& path, bool invert) {
   return image;
 }
 
-BinaryImage<3> read_png_stack(const std::filesystem::path& folder, bool invert) {
+BinaryImage<3> read_png_stack(const std::filesystem::path& folder, bool invert,
+                              const PixelCheck& check) {
   if (!std::filesystem::is_directory(folder))
     throw InputError(folder.string() + ": not a folder; give a folder of PNG slices");
   std::vector<std::filesystem::path> slices;
@@ -85,7 +95,9 @@ BinaryImage<3> read_png_stack(const std::filesystem::path& folder, bool invert) 
   std::sort(slices.begin(), slices.end());
   BinaryImage<3> volume;
   for (std::size_t z = 0; z < slices.size(); ++z) {
-    const BinaryImage<2> slice = read_png_image(slices[z], invert);
+    // The first slice is checked on its own too: it is decoded before the volume's size
+    // is known.
+    const BinaryImage<2> slice = read_png_image(slices[z], invert, z == 0 ? check : PixelCheck{});
     if (z == 0) {
       volume.size = {slice.size[0], slice.size[1], static_cast<GridIndex>(slices.size())};
       if (volume.num_pixels() > kMaxImagePixels)
@@ -93,6 +105,8 @@ BinaryImage<3> read_png_stack(const std::filesystem::path& folder, bool invert) 
                             std::to_string(slice.size[0]) + "×" + std::to_string(slice.size[1]) +
                             " exceed the limit of " + std::to_string(kMaxImagePixels) +
                             " voxels; downsample the slices");
+      if (check)
+        check(volume.num_pixels());
       volume.solid.reserve(static_cast<std::size_t>(volume.num_pixels()));
     } else if (slice.size[0] != volume.size[0] || slice.size[1] != volume.size[1]) {
       throw InputError(slices[z].string() + ": slice is " + std::to_string(slice.size[0]) + "×" +
@@ -106,7 +120,8 @@ BinaryImage<3> read_png_stack(const std::filesystem::path& folder, bool invert) 
 }
 
 BinaryImage<3> read_raw_volume(const std::filesystem::path& path,
-                               const std::array<GridIndex, 3>& dims, bool invert) {
+                               const std::array<GridIndex, 3>& dims, bool invert,
+                               const PixelCheck& check) {
   const std::string name = path.string();
   for (GridIndex n : dims)
     if (n < 1)
@@ -126,6 +141,8 @@ BinaryImage<3> read_raw_volume(const std::filesystem::path& path,
                      std::to_string(dims[0]) + "," + std::to_string(dims[1]) + "," +
                      std::to_string(dims[2]) + " needs " + std::to_string(expected) +
                      " (one byte per voxel, x fastest); check the dimensions");
+  if (check)
+    check(expected);
   BinaryImage<3> volume;
   volume.size = dims;
   volume.solid.resize(static_cast<std::size_t>(expected));

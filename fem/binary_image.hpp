@@ -15,6 +15,7 @@
 #include <array>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <vector>
 
 #include "fem/voxel_grid.hpp"
@@ -44,16 +45,28 @@ struct BinaryImage {
 /// a header claiming more is refused before anything is allocated.
 inline constexpr GridIndex kMaxImagePixels = GridIndex{1} << 31;
 
+/// Sees the pixel (voxel) count of an image once it is known from the header or the
+/// dimensions and before the pixels are allocated; may throw to refuse the image
+/// (apps/voxel_memory_check.hpp checks --max-memory with it).
+using PixelCheck = std::function<void(GridIndex pixels)>;
+
 /// Reads a PNG (any colour type or bit depth). Throws InputError if the file is missing or
-/// not a readable PNG, ResourceError if it has more than kMaxImagePixels pixels.
-BinaryImage<2> read_png_image(const std::filesystem::path& path, bool invert = false);
+/// not a readable PNG, ResourceError if it has more than kMaxImagePixels pixels; `check`,
+/// when set, sees the pixel count first.
+BinaryImage<2> read_png_image(const std::filesystem::path& path, bool invert = false,
+                              const PixelCheck& check = {});
 
-/// Reads a folder of equally sized PNG slices (*.png, sorted by name) as a volume.
-BinaryImage<3> read_png_stack(const std::filesystem::path& folder, bool invert = false);
+/// Reads a folder of equally sized PNG slices (*.png, sorted by name) as a volume; `check`,
+/// when set, sees the voxel count (first slice's size × slices) before the volume is
+/// allocated.
+BinaryImage<3> read_png_stack(const std::filesystem::path& folder, bool invert = false,
+                              const PixelCheck& check = {});
 
-/// Reads NX·NY·NZ bytes (x fastest) as a volume; the file size must match exactly.
+/// Reads NX·NY·NZ bytes (x fastest) as a volume; the file size must match exactly. `check`,
+/// when set, sees NX·NY·NZ before the volume is allocated.
 BinaryImage<3> read_raw_volume(const std::filesystem::path& path,
-                               const std::array<GridIndex, 3>& dims, bool invert = false);
+                               const std::array<GridIndex, 3>& dims, bool invert = false,
+                               const PixelCheck& check = {});
 
 /// Writes a 2-D binary image as an 8-bit grey PNG (solid black, void white), the inverse of
 /// read_png_image (used to round-trip generated test images).

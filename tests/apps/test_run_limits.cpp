@@ -1,12 +1,14 @@
 // apps/run_limits.hpp end to end: --timeout and SIGINT stop a long solve cleanly (exit code,
 // one-line message, no output file, an existing output untouched, no temporary file left),
-// and --max-memory accepts units and refuses what does not fit.
+// and --max-memory accepts units and refuses what does not fit (meshes, voxel grids, images,
+// and both halves of compare).
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <catch2/catch.hpp>
+#include <fstream>
 #include <thread>
 
 #include "geometry/primitive_meshes.hpp"
@@ -264,4 +266,76 @@ TEST_CASE("fem --max-memory: a grid that does not fit is refused, naming a --cel
   r = run_bemshape("fem '" + png + "' --cell 0.1 --max-memory 12XB -o '" + out_2d + "'");
   CHECK(r.exit_code == 2);
   CHECK_THAT(r.err, Catch::Contains("--max-memory '12XB': expected a positive size"));
+}
+
+TEST_CASE("fem --max-memory: an image is refused from its header before its pixels are read") {
+  // A 5000² PNG (all void, a few kB on disk) claims 25 million pixels: 2 bytes each while
+  // it is decoded, 0.05 GB.
+  fem::BinaryImage<2> blank;
+  blank.size = {5000, 5000};
+  blank.solid.assign(25'000'000, 0);
+  const std::string png = scratch("fem_memory_blank.png");
+  fem::write_binary_png(png, blank);
+  const std::string out = scratch("fem_memory_blank.vti");
+  Run r = run_bemshape("fem '" + png + "' --cell 1 --max-memory 40MB -o '" + out + "'");
+  CAPTURE(r.err);
+  CHECK(r.exit_code == 2);
+  CHECK(r.first_error_line() ==
+        "bemshape: error: " + png +
+            ": reading its 25000000 pixels needs 0.05 GB but only 0.04 GB may be used "
+            "(--max-memory); downsample the image or raise --max-memory");
+  CHECK_FALSE(fs::exists(out));
+
+  // A folder of two such slices: each fits on its own (1 byte per voxel in a volume), the
+  // volume of 50 million voxels does not.
+  const fs::path slices = scratch("fem_memory_slices");
+  fs::create_directories(slices);
+  fs::copy_file(png, slices / "0.png", fs::copy_options::overwrite_existing);
+  fs::copy_file(png, slices / "1.png", fs::copy_options::overwrite_existing);
+  r = run_bemshape("fem '" + slices.string() + "' --cell 1 --max-memory 40MB -o '" + out + "'");
+  CAPTURE(r.err);
+  CHECK(r.exit_code == 2);
+  CHECK_THAT(r.first_error_line(),
+             Catch::EndsWith(": reading its 50000000 voxels needs 0.05 GB but only 0.04 GB may "
+                             "be used (--max-memory); downsample the image or raise --max-memory"));
+
+  // A raw volume: its size is checked against --dims first, then the budget. The file is
+  // sparse, so it takes no disk space.
+  const std::string raw = scratch("fem_memory_volume.raw");
+  { std::ofstream create(raw, std::ios::binary); }
+  fs::resize_file(raw, 400ULL * 400 * 400);
+  r = run_bemshape("fem '" + raw + "' --dims 400,400,400 --cell 1 --max-memory 50MB -o '" + out +
+                   "'");
+  CAPTURE(r.err);
+  CHECK(r.exit_code == 2);
+  CHECK(r.first_error_line() ==
+        "bemshape: error: " + raw +
+            ": reading its 64000000 voxels needs 0.064 GB but only 0.05 GB may be used "
+            "(--max-memory); downsample the image or raise --max-memory");
+  CHECK_FALSE(fs::exists(out));
+  fs::remove(raw);
+  fs::remove_all(slices);
+}
+
+TEST_CASE("compare --max-memory: the voxel grid and the BEM are both held to it") {
+  const std::string mesh = write_mesh(geometry::make_geodesic_sphere(0.5, 8), "compare_memory.stl");
+  // The voxel grid first: cells of 0.02 around the ball with h0 = 0.3 are 0.2 GB or more.
+  Run r = run_bemshape("compare '" + mesh +
+                       "' --h0 0.3 --cell 0.02 --max-probes 100 --max-memory 100MB --quiet");
+  CAPTURE(r.err);
+  CHECK(r.exit_code == 2);
+  CHECK_THAT(r.first_error_line(),
+             Catch::StartsWith("bemshape: error: " + mesh + ": the voxel FEM on ") &&
+                 Catch::Contains("of size 0.02, --cell) needs ") &&
+                 Catch::Contains("(--max-memory); use a larger cell size, e.g. --cell "));
+  const std::string suggestion = suggested_options(r.first_error_line());
+  REQUIRE(suggestion.rfind("--cell ", 0) == 0);
+  // The suggested cell fits; the BEM on edges of 0.02 (about 2·10⁴ faces) does not.
+  r = run_bemshape("compare '" + mesh + "' --h0 0.3 " + suggestion +
+                   " --max-edge 0.02 --max-probes 100 --max-memory 100MB --quiet");
+  CAPTURE(suggestion, r.err);
+  CHECK(r.exit_code == 2);
+  CHECK_THAT(r.first_error_line(),
+             Catch::Contains("(--max-memory)") && Catch::Contains("--max-edge"));
+  CHECK_THAT(r.err, !Catch::Contains("voxel FEM"));
 }

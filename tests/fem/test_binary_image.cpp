@@ -130,3 +130,45 @@ TEST_CASE("a PNG header claiming an absurd size is refused before allocating") {
              static_cast<std::streamsize>(bytes.size()));
   CHECK_THROWS_AS(read_png_image(path), ResourceError);
 }
+
+TEST_CASE("a pixel check sees the count before the pixels are allocated, and may refuse") {
+  struct Refused {
+    GridIndex pixels;
+  };
+  std::vector<GridIndex> seen;
+  const PixelCheck record = [&seen](GridIndex pixels) { seen.push_back(pixels); };
+  const PixelCheck refuse = [](GridIndex pixels) { throw Refused{pixels}; };
+
+  const auto png = scratch("checked.png");
+  write_binary_png(png, l_shape());
+  CHECK(read_png_image(png, false, record).solid == l_shape().solid);
+  CHECK(seen == std::vector<GridIndex>{15});
+  try {
+    read_png_image(png, false, refuse);
+    FAIL("the check did not run");
+  } catch (const Refused& r) {
+    CHECK(r.pixels == 15);
+  }
+
+  // A stack: the first slice on its own (decoded before the volume's size is known), then
+  // the volume.
+  const fs::path dir = scratch("checked_stack");
+  fs::create_directories(dir);
+  for (const char* name : {"a.png", "b.png", "c.png"})
+    write_binary_png(dir / name, l_shape());
+  seen.clear();
+  CHECK(read_png_stack(dir, false, record).num_pixels() == 45);
+  CHECK(seen == std::vector<GridIndex>{15, 45});
+
+  const auto raw = scratch("checked.raw");
+  {
+    std::ofstream out(raw, std::ios::binary);
+    out << std::string(24, '\1');
+  }
+  seen.clear();
+  CHECK(read_raw_volume(raw, {2, 3, 4}, false, record).num_pixels() == 24);
+  CHECK(seen == std::vector<GridIndex>{24});
+  // The file must match --dims before the budget is asked.
+  CHECK_THROWS_AS(read_raw_volume(raw, {2, 3, 5}, false, refuse), InputError);
+  CHECK_THROWS_AS(read_raw_volume(raw, {2, 3, 4}, false, refuse), Refused);
+}
