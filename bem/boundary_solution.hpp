@@ -29,6 +29,9 @@ struct SolveReport {
   /// assembly is one stage.
   std::vector<std::pair<std::string, double>> assembly_stages;
   std::uint64_t operator_bytes = 0;  ///< memory held by the assembled operators [bytes]
+  /// operator_bytes by part, in the order of assembly_stages (name, bytes); empty for the
+  /// dense path.
+  std::vector<std::pair<std::string, std::uint64_t>> operator_parts;
   double compression = 0.0;  ///< stored / dense entries of the compressed part (0: not compressed)
 };
 

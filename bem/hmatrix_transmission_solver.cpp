@@ -32,14 +32,18 @@ constexpr double kTypicalRank = 16.0;
 std::uint64_t hmatrix_solver_memory_estimate(Eigen::Index faces,
                                              const HMatrixSolverOptions& options) {
   const double n = double(faces);
-  // Near field: each leaf meets O(1) leaves densely (≈ 30 measured at η = 1) → 2 · 30 ·
-  // leaf entries per row; low rank: ≈ log2(N/leaf) levels × a few blocks × 3·rank per row.
+  // Near field: each leaf meets O(1) leaves densely (measured on a sphere: 30 at η = 1, 20
+  // at η = 2, 16 at η = 4, ≈ 30·η^−0.45) → 2 · that · leaf entries per row; low rank:
+  // ≈ log2(N/leaf) levels × a few blocks × 3·rank per row, 4 or 8 bytes per entry.
   const double leaf = double(options.leaf_size);
   const double levels = std::max(1.0, std::log2(std::max(n / leaf, 1.0)));
-  const double laplace = 8.0 * n * (2.0 * 30.0 * leaf + levels * 6.0 * 3.0 * kTypicalRank);
-  // Yukawa: up to ≈ 600 nonzeros per row at the default element size, 2 × 16 bytes each
-  // while assembling.
-  const double yukawa = 32.0 * 600.0 * n;
+  const double near_leaves = 30.0 * std::pow(std::max(options.eta, 1.0), -0.45);
+  const double factor_bytes = options.single_precision_factors ? 4.0 : 8.0;
+  const double laplace = n * (8.0 * 2.0 * near_leaves * leaf +
+                              factor_bytes * levels * 6.0 * 3.0 * kTypicalRank);
+  // Yukawa: up to ≈ 1400 nonzeros per row at the default element size, 12 bytes each in
+  // the row lists while assembling and again in the matrix.
+  const double yukawa = 24.0 * 1400.0 * n;
   const double preconditioner =
       double(ClusterBlockPreconditioner::bytes_for(faces, options.preconditioner_block));
   const double krylov = 8.0 * 2.0 * n * (options.restart + 6.0);
@@ -61,8 +65,9 @@ BoundarySolution solve_transmission_hmatrix(const geometry::SurfaceMesh& mesh,
 
   report_progress(progress, "assemble", 0.0);
   const GalerkinBlockGenerator<LaplaceKernel> generator(LaplaceKernel{}, panels, tree);
-  const HierarchicalMatrix laplace(tree, generator, {options.aca_tolerance, options.eta},
-                                   progress);
+  const HierarchicalMatrix laplace(
+      tree, generator,
+      {options.aca_tolerance, options.eta, options.single_precision_factors}, progress);
   const double interior_seconds = seconds_since(start);
   report_progress(progress, "assemble exterior", 0.0);
   // Exterior entries below 1e−2·ε of an unattenuated one are dropped: the same budget the
@@ -92,8 +97,14 @@ BoundarySolution solve_transmission_hmatrix(const geometry::SurfaceMesh& mesh,
       {"exterior near field", exterior_seconds},
       {"preconditioner",
        solution.report.assembly_seconds - interior_seconds - exterior_seconds}};
-  solution.report.operator_bytes =
-      laplace.stats().bytes() + std::uint64_t(yukawa.nonZeros()) * 16 + preconditioner.bytes();
+  // The exterior matrix holds a value and a 32-bit column index per stored entry.
+  solution.report.operator_parts = {
+      {"interior near field", 8 * hstats.dense_entries},
+      {"interior far field", hstats.low_rank_bytes},
+      {"exterior near field", std::uint64_t(yukawa.nonZeros()) * 12},
+      {"preconditioner", preconditioner.bytes()}};
+  for (const auto& [part, bytes] : solution.report.operator_parts)
+    solution.report.operator_bytes += bytes;
   solution.report.compression = laplace.stats().compression();
 
   const auto system = [&](const Eigen::VectorXd& x, Eigen::VectorXd& y) {

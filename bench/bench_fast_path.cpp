@@ -3,7 +3,7 @@
 // solves with the dense and/or the hierarchical-matrix path and prints one JSON line per run:
 //
 //   bench_fast_path sphere|plate|box FACES [dense|hmatrix|both] [--tolerance T] [--aca E]
-//                   [--leaf L] [--block B]
+//                   [--leaf L] [--eta H] [--single|--double] [--block B]
 //   bench_fast_path entry-costs FACES     (where a row of the operators spends its time)
 //   bench_fast_path interior sphere|box FACES POINTS [--solve] [--order P] [--theta T]
 //                   [--leaf L] [--negligible D] [--reference M] [--sweep]      (evaluate_potential on a grid: treecode vs direct)
@@ -370,7 +370,7 @@ int main(int argc, char** argv) {
   if (argc >= 2 && std::string(argv[1]) == "interior") return interior(argc, argv);
   if (argc < 3) {
     std::fprintf(stderr, "usage: bench_fast_path sphere|plate|box FACES [dense|hmatrix|both] "
-                         "[--tolerance T] [--aca E] [--leaf L] [--block B]\n");
+                         "[--tolerance T] [--aca E] [--leaf L] [--eta H] [--single|--double] [--block B]\n");
     return 2;
   }
   const std::string shape = argv[1];
@@ -383,6 +383,9 @@ int main(int argc, char** argv) {
     else if (a == "--tolerance" && i + 1 < argc) options.tolerance = std::atof(argv[++i]);
     else if (a == "--aca" && i + 1 < argc) options.aca_tolerance = std::atof(argv[++i]);
     else if (a == "--leaf" && i + 1 < argc) options.leaf_size = std::atol(argv[++i]);
+    else if (a == "--eta" && i + 1 < argc) options.eta = std::atof(argv[++i]);
+    else if (a == "--single") options.single_precision_factors = true;
+    else if (a == "--double") options.single_precision_factors = false;
     else if (a == "--block" && i + 1 < argc) options.preconditioner_block = std::atol(argv[++i]);
     else {
       std::fprintf(stderr, "bench_fast_path: unknown argument %s\n", a.c_str());
@@ -401,10 +404,13 @@ int main(int argc, char** argv) {
     const double cpu = cpu_seconds() - cpu_before;
     const Run& r = runs.back();
     std::printf("{\"shape\": \"%s\", \"faces\": %ld, \"solver\": \"%s\", \"h0\": %.6g, "
+                "\"eta\": %.3g, \"leaf\": %ld, \"single_factors\": %s, "
                 "\"times\": {\"mesh\": %.3f, \"assemble\": %.3f, \"solve\": %.3f, \"features\": %.3f}, "
                 "\"iterations\": %d, \"residual\": %.3g, \"peak_rss_mb\": %.1f, \"operator_mb\": %.1f, "
                 "\"compression\": %.4f, \"error\": %.3e, \"cpu_seconds\": %.1f",
-                shape.c_str(), long(p.mesh.num_faces()), s.c_str(), p.h0, mesh_seconds, r.assemble,
+                shape.c_str(), long(p.mesh.num_faces()), s.c_str(), p.h0, options.eta,
+                long(options.leaf_size), options.single_precision_factors ? "true" : "false",
+                mesh_seconds, r.assemble,
                 r.solve, r.features, r.solution.report.iterations, r.solution.report.residual,
                 double(peak_resident_bytes()) / 1e6, double(r.solution.report.operator_bytes) / 1e6,
                 r.solution.report.compression, r.error, cpu);
@@ -413,6 +419,15 @@ int main(int argc, char** argv) {
       const char* separator = "";
       for (const auto& [stage, stage_seconds] : r.solution.report.assembly_stages) {
         std::printf("%s\"%s\": %.3f", separator, stage.c_str(), stage_seconds);
+        separator = ", ";
+      }
+      std::printf("}");
+    }
+    if (!r.solution.report.operator_parts.empty()) {
+      std::printf(", \"operator_parts_mb\": {");
+      const char* separator = "";
+      for (const auto& [part, bytes] : r.solution.report.operator_parts) {
+        std::printf("%s\"%s\": %.1f", separator, part.c_str(), double(bytes) / 1e6);
         separator = ", ";
       }
       std::printf("}");

@@ -84,7 +84,12 @@ HierarchicalMatrix::HierarchicalMatrix(const ClusterTree& row_tree, const Cluste
             },
             options.aca_tolerance, max_rank);
         if (aca) {
-          b.low_rank = std::move(*aca);
+          if (options.single_precision_factors) {
+            b.u_single = aca->U.cast<float>();
+            b.v_single = aca->V.cast<float>();
+          } else {
+            b.low_rank = std::move(*aca);
+          }
           stored = true;
         } else {
           b.is_low_rank = false;
@@ -116,8 +121,13 @@ HierarchicalMatrix::HierarchicalMatrix(const ClusterTree& row_tree, const Cluste
     (b.is_low_rank ? stats_.low_rank_seconds : stats_.dense_seconds) += block_seconds[k];
     if (b.is_low_rank) {
       ++stats_.admissible_blocks;
-      stats_.low_rank_entries += std::uint64_t(b.low_rank.U.size() + b.low_rank.V.size());
-      stats_.max_rank = std::max(stats_.max_rank, b.low_rank.rank());
+      const bool single = b.u_single.size() > 0;
+      const auto entries = std::uint64_t(single ? b.u_single.size() + b.v_single.size()
+                                                : b.low_rank.U.size() + b.low_rank.V.size());
+      stats_.low_rank_entries += entries;
+      stats_.low_rank_bytes += (single ? 4 : 8) * entries;
+      stats_.max_rank =
+          std::max(stats_.max_rank, single ? b.u_single.cols() : b.low_rank.rank());
     } else {
       ++stats_.dense_blocks;
       stats_.dense_entries += std::uint64_t(b.dense.size());
@@ -147,7 +157,9 @@ void HierarchicalMatrix::multiply_add(const Eigen::Ref<const Eigen::MatrixXd>& x
       const Block& b = blocks_[k];
       const Eigen::VectorXd xs = gather(x, b);
       const Eigen::Index m = b.row_end - b.row_begin;
-      if (b.is_low_rank)
+      if (b.is_low_rank && b.u_single.size())
+        product.noalias() = b.u_single.cast<double>() * (b.v_single.cast<double>().transpose() * xs);
+      else if (b.is_low_rank)
         product.noalias() = b.low_rank.U * (b.low_rank.V.transpose() * xs);
       else
         product.noalias() = b.dense * xs;
@@ -184,9 +196,13 @@ std::vector<Eigen::MatrixXd> HierarchicalMatrix::diagonal_blocks(
       const Eigen::Index n = b.col_end - b.col_begin;
       for (int d = 0; d < densities_; ++d) {
         auto target = out[t].block(r0 - begin, d * size + (c0 - begin), r1 - r0, c1 - c0);
-        if (b.is_low_rank)
-          target.noalias() += b.low_rank.U.middleRows(r0 - b.row_begin, r1 - r0) *
-                              b.low_rank.V.middleRows(d * n + (c0 - b.col_begin), c1 - c0).transpose();
+        const Eigen::Index u0 = r0 - b.row_begin, v0 = d * n + (c0 - b.col_begin);
+        if (b.is_low_rank && b.u_single.size())
+          target.noalias() += b.u_single.middleRows(u0, r1 - r0).cast<double>() *
+                              b.v_single.middleRows(v0, c1 - c0).cast<double>().transpose();
+        else if (b.is_low_rank)
+          target.noalias() += b.low_rank.U.middleRows(u0, r1 - r0) *
+                              b.low_rank.V.middleRows(v0, c1 - c0).transpose();
         else
           target += b.dense.block(r0 - b.row_begin, d * n + (c0 - b.col_begin), r1 - r0, c1 - c0);
       }

@@ -1,6 +1,8 @@
 #include "bem/hierarchical/yukawa_near_field.hpp"
 
 #include <atomic>
+#include <cstdint>
+#include <limits>
 #include <new>
 #include <string>
 #include <cmath>
@@ -29,7 +31,7 @@ SparseRowMatrix assemble_yukawa_near_field(const std::vector<Panel>& panels,
   const double cutoff = yukawa_cutoff_gap(kappa, negligible);
   const double reach = cutoff + 2.0 * max_radius;
 
-  std::vector<std::vector<Eigen::Index>> columns(static_cast<size_t>(n));
+  std::vector<std::vector<std::int32_t>> columns(static_cast<size_t>(n));
   std::vector<std::vector<double>> values(static_cast<size_t>(n));
   std::atomic<Eigen::Index> rows_done{0};
   std::atomic<bool> out_of_memory{false};
@@ -57,16 +59,16 @@ SparseRowMatrix assemble_yukawa_near_field(const std::vector<Panel>& panels,
       std::sort(near.begin(), near.end());
       auto& cols = columns[size_t(i)];
       auto& vals = values[size_t(i)];
-      std::vector<std::pair<Eigen::Index, double>> single;
+      std::vector<std::pair<std::int32_t, double>> single;
       for (const Eigen::Index j : near) {
         const Panel& trial = panels[size_t(perm[size_t(j)])];
         if ((test.centroid - trial.centroid).norm() - test.radius - trial.radius > cutoff) continue;
         const auto e = yukawa.entry(perm[size_t(i)], perm[size_t(j)]);
         if (e.double_layer != 0.0) {
-          cols.push_back(j);
+          cols.push_back(static_cast<std::int32_t>(j));
           vals.push_back(-e.double_layer);
         }
-        if (e.single_layer != 0.0) single.emplace_back(n + j, e.single_layer);
+        if (e.single_layer != 0.0) single.emplace_back(static_cast<std::int32_t>(n + j), e.single_layer);
       }
       for (const auto& [c, v] : single) {
         cols.push_back(c);
@@ -88,12 +90,21 @@ SparseRowMatrix assemble_yukawa_near_field(const std::vector<Panel>& panels,
                         "(larger --max-edge)");
   SparseRowMatrix y(n, 2 * n);
   Eigen::VectorX<Eigen::Index> counts(n);
-  for (Eigen::Index i = 0; i < n; ++i) counts(i) = static_cast<Eigen::Index>(columns[size_t(i)].size());
+  Eigen::Index total = 0;
+  for (Eigen::Index i = 0; i < n; ++i) {
+    counts(i) = static_cast<Eigen::Index>(columns[size_t(i)].size());
+    total += counts(i);
+  }
+  if (total > std::numeric_limits<std::int32_t>::max())
+    throw ResourceError("the exterior near field of " + std::to_string(n) + " faces has " +
+                        std::to_string(total) + " entries, more than its 32-bit index allows (" +
+                        std::to_string(std::numeric_limits<std::int32_t>::max()) +
+                        "); use a coarser mesh (larger --max-edge)");
   y.reserve(counts);
   for (Eigen::Index i = 0; i < n; ++i) {
     for (size_t k = 0; k < columns[size_t(i)].size(); ++k)
       y.insert(i, columns[size_t(i)][k]) = values[size_t(i)][k];
-    std::vector<Eigen::Index>().swap(columns[size_t(i)]);
+    std::vector<std::int32_t>().swap(columns[size_t(i)]);
     std::vector<double>().swap(values[size_t(i)]);
   }
   y.makeCompressed();

@@ -400,6 +400,21 @@ TEST_CASE("solver hmatrix: the same thickness as --solver dense, GMRES reported 
   CHECK(fast_report["solver"]["iterations"].get<int>() > 0);
   CHECK(fast_report["solver"]["residual"].get<double>() <= 1e-8);
   CHECK(fast_report["solver"]["operator_mb"].get<double>() > 0.0);
+  // The parts add up to the whole. On 1280 faces (leaves of 32, η = 1) no block is far
+  // enough apart to be compressed: the far field is empty, every other part is there.
+  double parts_mb = 0.0;
+  for (const char* part : {"interior near field", "interior far field", "exterior near field",
+                           "preconditioner"}) {
+    CAPTURE(part);
+    const double mb = fast_report["solver"]["operator_parts_mb"][part].get<double>();
+    if (std::string(part) == "interior far field")
+      CHECK(mb == 0.0);
+    else
+      CHECK(mb > 0.0);
+    parts_mb += mb;
+  }
+  CHECK(parts_mb == Approx(fast_report["solver"]["operator_mb"].get<double>()).epsilon(1e-12));
+  CHECK(dense_report["solver"]["operator_parts_mb"].empty());
   for (const char* column : {"h_p", "h_f"}) {
     const Eigen::VectorXd a = dense.col(column), b = fast.col(column);
     CHECK(((a - b).array().abs() / a.array()).maxCoeff() < 1e-5);
