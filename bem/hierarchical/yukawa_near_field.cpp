@@ -1,5 +1,6 @@
 #include "bem/hierarchical/yukawa_near_field.hpp"
 
+#include <algorithm>
 #include <atomic>
 #include <cstdint>
 #include <limits>
@@ -17,6 +18,32 @@ namespace bemshape::bem {
 
 double yukawa_cutoff_gap(double kappa, double negligible) { return -std::log(negligible) / kappa; }
 
+namespace {
+
+/// Tree positions of the panels whose boxes come within `reach` of the test panel's box, in
+/// increasing order (the candidates of one row).
+void candidate_panels(const Panel& test, const ClusterTree& tree, double reach,
+                      std::vector<Eigen::Index>& near, std::vector<int>& stack) {
+  BoundingBox box;
+  for (const auto& c : test.corners) box.extend(c);
+  near.clear();
+  stack.assign(1, 0);
+  while (!stack.empty()) {
+    const Cluster& cl = tree.cluster(stack.back());
+    stack.pop_back();
+    if (box.distance(cl.box) > reach) continue;
+    if (cl.is_leaf()) {
+      for (Eigen::Index j = cl.begin; j < cl.end; ++j) near.push_back(j);
+    } else {
+      stack.push_back(cl.first_child + 1);
+      stack.push_back(cl.first_child);
+    }
+  }
+  std::sort(near.begin(), near.end());
+}
+
+}  // namespace
+
 SparseRowMatrix assemble_yukawa_near_field(const std::vector<Panel>& panels,
                                            const ClusterTree& tree, double kappa,
                                            double negligible, const ProgressCallback& progress) {
@@ -30,84 +57,103 @@ SparseRowMatrix assemble_yukawa_near_field(const std::vector<Panel>& panels,
   // g* + 2·max radius hold no kept entry.
   const double cutoff = yukawa_cutoff_gap(kappa, negligible);
   const double reach = cutoff + 2.0 * max_radius;
+  const auto kept = [&](const Panel& test, const Panel& trial) {
+    return (test.centroid - trial.centroid).norm() - test.radius - trial.radius <= cutoff;
+  };
 
-  std::vector<std::vector<std::int32_t>> columns(static_cast<size_t>(n));
-  std::vector<std::vector<double>> values(static_cast<size_t>(n));
-  std::atomic<Eigen::Index> rows_done{0};
+  // Two passes, so that the rows are written straight into the matrix and nothing else of
+  // its size is ever held: first each row's room (two entries, Kκ and Vκ, per panel within
+  // the cutoff: a bound, since Kκ vanishes between coplanar panels), then the entries.
+  Eigen::VectorX<Eigen::Index> room(n);
   std::atomic<bool> out_of_memory{false};
-#pragma omp parallel for schedule(dynamic, 16)
-  for (Eigen::Index i = 0; i < n; ++i) {
-    // A cancelled run skips the remaining rows (an exception cannot leave the parallel loop).
-    if (cancellation_requested() || out_of_memory) continue;
-    try {
-      const Panel& test = panels[size_t(perm[size_t(i)])];
-      BoundingBox box;
-      for (const auto& c : test.corners) box.extend(c);
-      std::vector<Eigen::Index> near;  // tree positions of the candidate trial panels
-      std::vector<int> stack{0};
-      while (!stack.empty()) {
-        const Cluster& cl = tree.cluster(stack.back());
-        stack.pop_back();
-        if (box.distance(cl.box) > reach) continue;
-        if (cl.is_leaf()) {
-          for (Eigen::Index j = cl.begin; j < cl.end; ++j) near.push_back(j);
-        } else {
-          stack.push_back(cl.first_child + 1);
-          stack.push_back(cl.first_child);
-        }
+#pragma omp parallel
+  {
+    std::vector<Eigen::Index> near;
+    std::vector<int> stack;
+#pragma omp for schedule(dynamic, 64)
+    for (Eigen::Index i = 0; i < n; ++i) {
+      if (cancellation_requested() || out_of_memory) continue;
+      try {
+        const Panel& test = panels[size_t(perm[size_t(i)])];
+        candidate_panels(test, tree, reach, near, stack);
+        Eigen::Index count = 0;
+        for (const Eigen::Index j : near) count += kept(test, panels[size_t(perm[size_t(j)])]);
+        room(i) = 2 * count;
+      } catch (const std::bad_alloc&) {
+        out_of_memory = true;  // reported after the loop: an exception cannot leave it
       }
-      std::sort(near.begin(), near.end());
-      auto& cols = columns[size_t(i)];
-      auto& vals = values[size_t(i)];
-      std::vector<std::pair<std::int32_t, double>> single;
-      for (const Eigen::Index j : near) {
-        const Panel& trial = panels[size_t(perm[size_t(j)])];
-        if ((test.centroid - trial.centroid).norm() - test.radius - trial.radius > cutoff) continue;
-        const auto e = yukawa.entry(perm[size_t(i)], perm[size_t(j)]);
-        if (e.double_layer != 0.0) {
-          cols.push_back(static_cast<std::int32_t>(j));
-          vals.push_back(-e.double_layer);
-        }
-        if (e.single_layer != 0.0) single.emplace_back(static_cast<std::int32_t>(n + j), e.single_layer);
-      }
-      for (const auto& [c, v] : single) {
-        cols.push_back(c);
-        vals.push_back(v);
-      }
-    } catch (const std::bad_alloc&) {
-      out_of_memory = true;  // reported after the loop: an exception cannot leave it
-    }
-    const Eigen::Index done = ++rows_done;
-    if (progress && done % 1024 == 0) {
-#pragma omp critical(bemshape_progress)
-      report_progress(progress, "assemble exterior", double(done) / double(n));
     }
   }
   throw_if_cancelled();
-  if (out_of_memory)
-    throw ResourceError("the exterior near field of " + std::to_string(n) +
-                        " faces ran out of memory while assembling; use a coarser mesh "
-                        "(larger --max-edge)");
-  SparseRowMatrix y(n, 2 * n);
-  Eigen::VectorX<Eigen::Index> counts(n);
-  Eigen::Index total = 0;
-  for (Eigen::Index i = 0; i < n; ++i) {
-    counts(i) = static_cast<Eigen::Index>(columns[size_t(i)].size());
-    total += counts(i);
-  }
-  if (total > std::numeric_limits<std::int32_t>::max())
-    throw ResourceError("the exterior near field of " + std::to_string(n) + " faces has " +
-                        std::to_string(total) + " entries, more than its 32-bit index allows (" +
+  const auto ran_out = [n] {
+    return ResourceError("the exterior near field of " + std::to_string(n) +
+                         " faces ran out of memory while assembling; use a coarser mesh "
+                         "(larger --max-edge)");
+  };
+  if (out_of_memory) throw ran_out();
+  if (room.sum() > std::numeric_limits<std::int32_t>::max())
+    throw ResourceError("the exterior near field of " + std::to_string(n) + " faces needs up to " +
+                        std::to_string(room.sum()) + " entries, more than its 32-bit index allows (" +
                         std::to_string(std::numeric_limits<std::int32_t>::max()) +
                         "); use a coarser mesh (larger --max-edge)");
-  y.reserve(counts);
-  for (Eigen::Index i = 0; i < n; ++i) {
-    for (size_t k = 0; k < columns[size_t(i)].size(); ++k)
-      y.insert(i, columns[size_t(i)][k]) = values[size_t(i)][k];
-    std::vector<std::int32_t>().swap(columns[size_t(i)]);
-    std::vector<double>().swap(values[size_t(i)]);
+  SparseRowMatrix y(n, 2 * n);
+  try {
+    y.reserve(room);  // uncompressed: row i owns room(i) slots from outerIndexPtr()[i]
+  } catch (const std::bad_alloc&) {
+    throw ran_out();
   }
-  y.makeCompressed();
+  std::int32_t* const columns = y.innerIndexPtr();
+  double* const values = y.valuePtr();
+  const std::int32_t* const row_start = y.outerIndexPtr();
+  std::int32_t* const row_size = y.innerNonZeroPtr();
+
+  std::atomic<Eigen::Index> rows_done{0};
+#pragma omp parallel
+  {
+    std::vector<Eigen::Index> near;
+    std::vector<int> stack;
+    std::vector<std::pair<std::int32_t, double>> single;
+    // Each row writes only its own slots, so the rows can be filled concurrently.
+#pragma omp for schedule(dynamic, 16)
+    for (Eigen::Index i = 0; i < n; ++i) {
+      // A cancelled run skips the remaining rows (an exception cannot leave the parallel loop).
+      if (cancellation_requested() || out_of_memory) continue;
+      try {
+        const Panel& test = panels[size_t(perm[size_t(i)])];
+        candidate_panels(test, tree, reach, near, stack);
+        single.clear();
+        std::int32_t* const row_columns = columns + row_start[i];
+        double* const row_values = values + row_start[i];
+        std::int32_t count = 0;  // at most two per kept panel: within room(i)
+        for (const Eigen::Index j : near) {
+          const Panel& trial = panels[size_t(perm[size_t(j)])];
+          if (!kept(test, trial)) continue;
+          const auto e = yukawa.entry(perm[size_t(i)], perm[size_t(j)]);
+          if (e.double_layer != 0.0) {
+            row_columns[count] = static_cast<std::int32_t>(j);
+            row_values[count++] = -e.double_layer;
+          }
+          if (e.single_layer != 0.0)
+            single.emplace_back(static_cast<std::int32_t>(n + j), e.single_layer);
+        }
+        for (const auto& [c, v] : single) {
+          row_columns[count] = c;
+          row_values[count++] = v;
+        }
+        row_size[i] = count;
+      } catch (const std::bad_alloc&) {
+        out_of_memory = true;
+      }
+      const Eigen::Index done = ++rows_done;
+      if (progress && done % 1024 == 0) {
+#pragma omp critical(bemshape_progress)
+        report_progress(progress, "assemble exterior", double(done) / double(n));
+      }
+    }
+  }
+  throw_if_cancelled();
+  if (out_of_memory) throw ran_out();
+  y.makeCompressed();  // in place: closes the gaps the coplanar zeros of Kκ left
   return y;
 }
 

@@ -32,5 +32,17 @@ TEST_CASE("Yukawa near field: every nonzero entry of the dense operator, nothing
     }
   CHECK(mismatched == 0);
   CHECK(y.nonZeros() >= nonzero);
+  // Written row by row into reserved room and compressed in place: compressed, and each
+  // row's columns strictly increasing (Eigen's coefficient lookup searches them).
+  CHECK(y.isCompressed());
+  Eigen::Index unsorted = 0;
+  for (Eigen::Index i = 0; i < n; ++i) {
+    Eigen::Index previous = -1;
+    for (bem::SparseRowMatrix::InnerIterator it(y, i); it; ++it) {
+      unsorted += it.col() <= previous;
+      previous = it.col();
+    }
+  }
+  CHECK(unsorted == 0);
   CHECK(nonzero < n * n);  // the cutoff drops something on this plate
 }
