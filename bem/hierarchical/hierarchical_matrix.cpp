@@ -87,6 +87,7 @@ HierarchicalMatrix::HierarchicalMatrix(const ClusterTree& row_tree, const Cluste
           if (options.single_precision_factors) {
             b.u_single = aca->U.cast<float>();
             b.v_single = aca->V.cast<float>();
+            b.single_precision = true;
           } else {
             b.low_rank = std::move(*aca);
           }
@@ -121,7 +122,7 @@ HierarchicalMatrix::HierarchicalMatrix(const ClusterTree& row_tree, const Cluste
     (b.is_low_rank ? stats_.low_rank_seconds : stats_.dense_seconds) += block_seconds[k];
     if (b.is_low_rank) {
       ++stats_.admissible_blocks;
-      const bool single = b.u_single.size() > 0;
+      const bool single = b.single_precision;
       const auto entries = std::uint64_t(single ? b.u_single.size() + b.v_single.size()
                                                 : b.low_rank.U.size() + b.low_rank.V.size());
       stats_.low_rank_entries += entries;
@@ -157,7 +158,7 @@ void HierarchicalMatrix::multiply_add(const Eigen::Ref<const Eigen::MatrixXd>& x
       const Block& b = blocks_[k];
       const Eigen::VectorXd xs = gather(x, b);
       const Eigen::Index m = b.row_end - b.row_begin;
-      if (b.is_low_rank && b.u_single.size())
+      if (b.is_low_rank && b.single_precision)
         product.noalias() = b.u_single.cast<double>() * (b.v_single.cast<double>().transpose() * xs);
       else if (b.is_low_rank)
         product.noalias() = b.low_rank.U * (b.low_rank.V.transpose() * xs);
@@ -197,7 +198,7 @@ std::vector<Eigen::MatrixXd> HierarchicalMatrix::diagonal_blocks(
       for (int d = 0; d < densities_; ++d) {
         auto target = out[t].block(r0 - begin, d * size + (c0 - begin), r1 - r0, c1 - c0);
         const Eigen::Index u0 = r0 - b.row_begin, v0 = d * n + (c0 - b.col_begin);
-        if (b.is_low_rank && b.u_single.size())
+        if (b.is_low_rank && b.single_precision)
           target.noalias() += b.u_single.middleRows(u0, r1 - r0).cast<double>() *
                               b.v_single.middleRows(v0, c1 - c0).cast<double>().transpose();
         else if (b.is_low_rank)

@@ -102,6 +102,7 @@ class HierarchicalMatrix {
     LowRankBlock low_rank;  ///< U: o|τ|×k, V: g|σ|×k (empty when stored in single precision)
     Eigen::MatrixXf u_single, v_single;  ///< the same factors in single precision
     bool is_low_rank = false;
+    bool single_precision = false;  ///< the factors are u_single, v_single (rank may be 0)
   };
   Eigen::VectorXd gather(const Eigen::Ref<const Eigen::MatrixXd>& x, const Block& b) const;
 

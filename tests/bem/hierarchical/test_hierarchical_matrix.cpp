@@ -131,3 +131,42 @@ TEST_CASE("rectangular H-matrix (two trees, three outputs, two densities) = dens
   const Eigen::VectorXd exact = dense * v.reshaped();  // rows o·900 + i
   CHECK((out.reshaped() - exact).norm() < 1e-7 * exact.norm());
 }
+
+namespace {
+
+/// A(i, j) = 1 on the diagonal blocks' diagonal, 0 elsewhere: every admissible block is
+/// zero, so the cross approximation returns rank 0 for all of them.
+class DiagonalKernel final : public bem::OperatorBlockGenerator {
+ public:
+  int densities() const override { return 1; }
+  void fill(Eigen::Index r0, Eigen::Index r1, Eigen::Index c0, Eigen::Index c1,
+            Eigen::Ref<Eigen::MatrixXd> out) const override {
+    for (Eigen::Index r = r0; r < r1; ++r)
+      for (Eigen::Index c = c0; c < c1; ++c) out(r - r0, c - c0) = r == c ? 1.0 : 0.0;
+  }
+};
+
+}  // namespace
+
+TEST_CASE("H-matrix with rank-0 blocks, in double and single precision: the identity") {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  Eigen::MatrixX3d points(600, 3);
+  for (Eigen::Index i = 0; i < points.rows(); ++i) points.row(i) << u(rng), u(rng), u(rng);
+  const bem::ClusterTree tree(points, 16);
+  for (const bool single : {false, true}) {
+    CAPTURE(single);
+    const bem::HierarchicalMatrix h(tree, DiagonalKernel{}, {1e-8, 2.0, single});
+    REQUIRE(h.stats().admissible_blocks > 0);
+    CHECK(h.stats().low_rank_entries == 0);
+    CHECK(h.stats().low_rank_bytes == 0);
+    CHECK(h.stats().max_rank == 0);
+    Eigen::VectorXd x(600);
+    for (double& e : x) e = u(rng);
+    Eigen::VectorXd y = Eigen::VectorXd::Zero(600);
+    h.multiply_add(x, y);
+    CHECK(y == x);
+    const auto blocks = h.diagonal_blocks({{0, 300}, {300, 600}});
+    for (const Eigen::MatrixXd& b : blocks) CHECK(b == Eigen::MatrixXd::Identity(300, 300));
+  }
+}
