@@ -70,6 +70,26 @@ class ClusterTree {
   /// Indices of the largest clusters with at most `max_size` panels, in tree order (their
   /// ranges tile [0, N)).
   std::vector<int> clusters_up_to(Eigen::Index max_size) const;
+  /// Calls visit(leaf) for every leaf whose box lies within `reach` of `box`, depth first,
+  /// left child first; clusters farther away are not descended into. `stack` is scratch
+  /// space, reused across calls to spare allocations.
+  template <class Visit>
+  void for_each_leaf_near(const BoundingBox& box, double reach, std::vector<int>& stack,
+                          Visit&& visit) const {
+    stack.assign(1, 0);
+    while (!stack.empty()) {
+      const Cluster& cl = cluster(stack.back());
+      stack.pop_back();
+      if (box.distance(cl.box) > reach)
+        continue;
+      if (cl.is_leaf()) {
+        visit(cl);
+      } else {
+        stack.push_back(cl.first_child + 1);
+        stack.push_back(cl.first_child);
+      }
+    }
+  }
 
  private:
   /// The construction for elements with the given centres (split coordinates) and the

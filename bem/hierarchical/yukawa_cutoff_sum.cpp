@@ -33,19 +33,8 @@ YukawaCutoffSum::Value YukawaCutoffSum::evaluate(const Eigen::Vector3d& x, std::
   const auto& perm = tree_->permutation();
   const BoundingBox point{x, x};
   Value v;
-  stack.clear();
-  stack.push_back(0);
-  while (!stack.empty()) {
-    const Cluster& cl = tree_->cluster(stack.back());
-    stack.pop_back();
-    if (cl.box.distance(point) > reach_)
-      continue;
-    if (!cl.is_leaf()) {
-      stack.push_back(cl.first_child + 1);
-      stack.push_back(cl.first_child);
-      continue;
-    }
-    for (Eigen::Index t = cl.begin; t < cl.end; ++t) {
+  tree_->for_each_leaf_near(point, reach_, stack, [&](const Cluster& leaf) {
+    for (Eigen::Index t = leaf.begin; t < leaf.end; ++t) {
       const Eigen::Index f = perm[size_t(t)];
       const Panel& panel = (*panels_)[size_t(f)];
       if ((x - panel.centroid).norm() - panel.radius > cutoff_)
@@ -57,7 +46,7 @@ YukawaCutoffSum::Value YukawaCutoffSum::evaluate(const Eigen::Vector3d& x, std::
       v.gradient += -qo.transpose() * y.single_layer_gradient.transpose() +
                     phi.transpose() * y.double_layer_gradient.transpose();
     }
-  }
+  });
   return v;
 }
 

@@ -27,18 +27,9 @@ void candidate_panels(const Panel& test, const ClusterTree& tree, double reach,
   BoundingBox box;
   for (const auto& c : test.corners) box.extend(c);
   near.clear();
-  stack.assign(1, 0);
-  while (!stack.empty()) {
-    const Cluster& cl = tree.cluster(stack.back());
-    stack.pop_back();
-    if (box.distance(cl.box) > reach) continue;
-    if (cl.is_leaf()) {
-      for (Eigen::Index j = cl.begin; j < cl.end; ++j) near.push_back(j);
-    } else {
-      stack.push_back(cl.first_child + 1);
-      stack.push_back(cl.first_child);
-    }
-  }
+  tree.for_each_leaf_near(box, reach, stack, [&near](const Cluster& leaf) {
+    for (Eigen::Index j = leaf.begin; j < leaf.end; ++j) near.push_back(j);
+  });
   std::sort(near.begin(), near.end());
 }
 
