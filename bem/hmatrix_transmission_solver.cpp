@@ -1,5 +1,6 @@
 #include "bem/hmatrix_transmission_solver.hpp"
 
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <sstream>
@@ -46,7 +47,8 @@ std::uint64_t hmatrix_solver_memory_estimate(Eigen::Index faces,
   const double yukawa = 24.0 * 1400.0 * n;
   const double preconditioner =
       double(ClusterBlockPreconditioner::bytes_for(faces, options.preconditioner_block));
-  const double krylov = 8.0 * 2.0 * n * (options.restart + 6.0);
+  // Three Krylov bases (one per direction, solved in lockstep) and their work vectors.
+  const double krylov = 3.0 * 8.0 * 2.0 * n * (options.restart + 6.0);
   return static_cast<std::uint64_t>(laplace + yukawa + preconditioner + krylov);
 }
 
@@ -107,44 +109,57 @@ BoundarySolution solve_transmission_hmatrix(const geometry::SurfaceMesh& mesh,
     solution.report.operator_bytes += bytes;
   solution.report.compression = laplace.stats().compression();
 
-  const auto system = [&](const Eigen::VectorXd& x, Eigen::VectorXd& y) {
-    y.resize(2 * n);
-    Eigen::MatrixXd densities(n, 2);
-    densities.col(0) = x.head(n);
-    densities.col(1) = x.tail(n);
-    y.head(n) = -half_mass.cwiseProduct(x.head(n));
-    laplace.multiply_add(densities, y.head(n));
-    y.tail(n) = half_mass.cwiseProduct(x.head(n));
-    y.tail(n).noalias() += yukawa * x;
+  // The three directions share the operator: their GMRES run in lockstep (gmres_columns),
+  // so each step reads the H-matrix, the sparse exterior matrix and the preconditioner's
+  // factors once for all three vectors. x, y: 2n × k, one column per direction.
+  using RowMajorMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  const auto system = [&](const Eigen::MatrixXd& x, Eigen::MatrixXd& y) {
+    const Eigen::Index k = x.cols();
+    y.resize(2 * n, k);
+    Eigen::MatrixXd densities(n, 2 * k);  // column 2j: φ of vector j, 2j + 1: its q
+    for (Eigen::Index j = 0; j < k; ++j) {
+      densities.col(2 * j) = x.col(j).head(n);
+      densities.col(2 * j + 1) = x.col(j).tail(n);
+    }
+    y.topRows(n).noalias() = -(half_mass.asDiagonal() * x.topRows(n));
+    laplace.multiply_add(densities, y.topRows(n));
+    // A row-major right-hand side lets the sparse product read each row once for all k.
+    const RowMajorMatrix x_rows = x;
+    const RowMajorMatrix exterior = yukawa * x_rows;
+    y.bottomRows(n) = half_mass.asDiagonal() * x.topRows(n) + exterior;
   };
-  const auto precondition = [&](const Eigen::VectorXd& r, Eigen::VectorXd& z) {
+  const auto precondition = [&](const Eigen::MatrixXd& r, Eigen::MatrixXd& z) {
     preconditioner.apply(r, z);
   };
 
   const auto solve_start = Clock::now();
-  solution.phi.resize(n, 3);
-  solution.q.resize(n, 3);
   GmresOptions gmres_options;
   gmres_options.tolerance = options.tolerance;
   gmres_options.restart = options.restart;
   gmres_options.max_iterations = options.max_iterations;
+  // b = (0, Vκ g) per direction i: the single-layer half of Y applied to g = n_i/ã.
+  RowMajorMatrix g = RowMajorMatrix::Zero(2 * n, 3);
+  for (Eigen::Index p = 0; p < n; ++p)
+    g.row(n + p) = mesh.face_normals().row(perm[size_t(p)]) / parameters.a_tilde;
+  Eigen::MatrixXd b = Eigen::MatrixXd::Zero(2 * n, 3);
+  b.bottomRows(n) = yukawa * g;
+  Eigen::MatrixXd x = Eigen::MatrixXd::Zero(2 * n, 3);
+  std::array<int, 3> reached{0, 0, 0};
+  const std::vector<GmresResult> results = gmres_columns(
+      system, precondition, b, x, gmres_options, [&](int direction, int iteration, double) {
+        throw_if_cancelled();  // called between GMRES steps, outside parallel regions
+        reached[size_t(direction)] = iteration;
+        double done = 0.0;
+        for (const int r : reached) done += std::min(1.0, r / 30.0) / 3.0;
+        report_progress(progress, "solve", done);
+      });
+  solution.phi.resize(n, 3);
+  solution.q.resize(n, 3);
   for (int i = 0; i < 3; ++i) {
-    // b = (0, Vκ g): the single-layer half of Y applied to g.
-    Eigen::VectorXd g = Eigen::VectorXd::Zero(2 * n);
-    for (Eigen::Index p = 0; p < n; ++p)
-      g(n + p) = mesh.face_normals()(perm[size_t(p)], i) / parameters.a_tilde;
-    Eigen::VectorXd b = Eigen::VectorXd::Zero(2 * n);
-    b.tail(n) = yukawa * g;
-    Eigen::VectorXd x = Eigen::VectorXd::Zero(2 * n);
-    const GmresResult result =
-        gmres(system, precondition, b, x, gmres_options, [&](int iteration, double) {
-          throw_if_cancelled();  // called between GMRES iterations, outside parallel regions
-          report_progress(progress, "solve",
-                          (i + std::min(1.0, iteration / 30.0)) / 3.0);
-        });
+    const GmresResult& result = results[size_t(i)];
     solution.report.iterations = std::max(solution.report.iterations, result.iterations);
     solution.report.residual = std::max(solution.report.residual, result.residual);
-    if (!result.converged || !x.allFinite()) {
+    if (!result.converged || !x.col(i).allFinite()) {
       std::ostringstream msg;
       msg << "hierarchical-matrix BEM solve (direction " << i + 1 << "): GMRES reached relative "
           << "residual " << result.residual << " after " << result.iterations
@@ -153,8 +168,8 @@ BoundarySolution solve_transmission_hmatrix(const geometry::SurfaceMesh& mesh,
       throw NumericalError(msg.str());
     }
     for (Eigen::Index p = 0; p < n; ++p) {
-      solution.phi(perm[size_t(p)], i) = x(p);
-      solution.q(perm[size_t(p)], i) = x(n + p);
+      solution.phi(perm[size_t(p)], i) = x(p, i);
+      solution.q(perm[size_t(p)], i) = x(n + p, i);
     }
   }
   report_progress(progress, "solve", 1.0);

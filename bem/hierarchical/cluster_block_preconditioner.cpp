@@ -35,18 +35,18 @@ ClusterBlockPreconditioner::ClusterBlockPreconditioner(const ClusterTree& tree,
   }
 }
 
-void ClusterBlockPreconditioner::apply(const Eigen::VectorXd& r, Eigen::VectorXd& z) const {
-  z.resize(r.size());
+void ClusterBlockPreconditioner::apply(const Eigen::MatrixXd& r, Eigen::MatrixXd& z) const {
+  z.resize(r.rows(), r.cols());
 #pragma omp parallel for schedule(static)
   for (std::size_t t = 0; t < ranges_.size(); ++t) {
     const auto [begin, end] = ranges_[t];
     const Eigen::Index s = end - begin;
-    Eigen::VectorXd local(2 * s);
-    local.head(s) = r.segment(begin, s);
-    local.tail(s) = r.segment(n_ + begin, s);
-    const Eigen::VectorXd solved = factors_[t].solve(local);
-    z.segment(begin, s) = solved.head(s);
-    z.segment(n_ + begin, s) = solved.tail(s);
+    Eigen::MatrixXd local(2 * s, r.cols());
+    local.topRows(s) = r.middleRows(begin, s);
+    local.bottomRows(s) = r.middleRows(n_ + begin, s);
+    const Eigen::MatrixXd solved = factors_[t].solve(local);
+    z.middleRows(begin, s) = solved.topRows(s);
+    z.middleRows(n_ + begin, s) = solved.bottomRows(s);
   }
 }
 

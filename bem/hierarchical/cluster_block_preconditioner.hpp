@@ -35,8 +35,9 @@ class ClusterBlockPreconditioner {
                              const SparseRowMatrix& yukawa, const Eigen::VectorXd& half_mass,
                              Eigen::Index block_size = kDefaultBlockSize);
 
-  /// z = M⁻¹ r for r = (r_φ, r_q), 2N in tree order.
-  void apply(const Eigen::VectorXd& r, Eigen::VectorXd& z) const;
+  /// z = M⁻¹ r for each column r = (r_φ, r_q) of `r` (2N × k, tree order); one pass over
+  /// the factors for all k columns.
+  void apply(const Eigen::MatrixXd& r, Eigen::MatrixXd& z) const;
 
   /// Bytes held by the factorisations.
   std::uint64_t bytes() const;

@@ -5,8 +5,17 @@
 // monitors is the true residual of A x = b, so `tolerance` means ‖b − A x‖ ≤ tol·‖b‖.
 // Modified Gram–Schmidt Arnoldi, Givens rotations; the final residual is recomputed from
 // scratch and reported.
+//
+// Several right-hand sides with the same A (the three coordinate directions of the
+// transmission problem) are solved by `gmres_columns`: one GMRES per column, run in
+// lockstep so that every step applies A and M⁻¹ to all unfinished columns at once. An
+// operator whose cost is reading its storage (an H-matrix, a sparse matrix, block LU
+// factors) then reads it once per step for all columns instead of once per column. Each
+// column's iterates are those of a GMRES on that column alone: nothing is shared between
+// the columns' Krylov spaces (this is not block GMRES), so the iteration counts are too.
 
 #include <functional>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -14,6 +23,10 @@ namespace bemshape::bem {
 
 /// y = A x (or y = M⁻¹ x for a preconditioner); y is sized by the caller's operator.
 using LinearOperator = std::function<void(const Eigen::VectorXd& x, Eigen::VectorXd& y)>;
+
+/// Y = A X column by column, X with one column per vector (or Y = M⁻¹ X); Y is sized by
+/// the operator.
+using ColumnsOperator = std::function<void(const Eigen::MatrixXd& x, Eigen::MatrixXd& y)>;
 
 struct GmresOptions {
   double tolerance = 1e-6;   ///< relative residual ‖b − A x‖/‖b‖ to reach
@@ -32,5 +45,14 @@ struct GmresResult {
 GmresResult gmres(const LinearOperator& a, const LinearOperator& preconditioner,
                   const Eigen::VectorXd& b, Eigen::VectorXd& x, const GmresOptions& options = {},
                   const std::function<void(int iteration, double residual)>& monitor = {});
+
+/// Solves A X = B column by column, in lockstep (see above), starting from the given X
+/// (resized to B's shape and zeroed if its shape differs). One result per column.
+/// `monitor(column, iteration, residual)` follows each Arnoldi step of a column with that
+/// column's residual estimate; it may throw to stop the solve.
+std::vector<GmresResult> gmres_columns(
+    const ColumnsOperator& a, const ColumnsOperator& preconditioner, const Eigen::MatrixXd& b,
+    Eigen::MatrixXd& x, const GmresOptions& options = {},
+    const std::function<void(int column, int iteration, double residual)>& monitor = {});
 
 }  // namespace bemshape::bem

@@ -136,27 +136,33 @@ HierarchicalMatrix::HierarchicalMatrix(const ClusterTree& row_tree, const Cluste
   }
 }
 
-Eigen::VectorXd HierarchicalMatrix::gather(const Eigen::Ref<const Eigen::MatrixXd>& x,
+Eigen::MatrixXd HierarchicalMatrix::gather(const Eigen::Ref<const Eigen::MatrixXd>& x,
                                            const Block& b) const {
-  const Eigen::Index n = b.col_end - b.col_begin;
-  Eigen::VectorXd xs(densities_ * n);
-  for (int d = 0; d < densities_; ++d) xs.segment(d * n, n) = x.col(d).segment(b.col_begin, n);
+  const Eigen::Index n = b.col_end - b.col_begin, vectors = x.cols() / densities_;
+  Eigen::MatrixXd xs(densities_ * n, vectors);
+  for (Eigen::Index j = 0; j < vectors; ++j)
+    for (int d = 0; d < densities_; ++d)
+      xs.col(j).segment(d * n, n) = x.col(j * densities_ + d).segment(b.col_begin, n);
   return xs;
 }
 
 void HierarchicalMatrix::multiply_add(const Eigen::Ref<const Eigen::MatrixXd>& x,
                                       Eigen::Ref<Eigen::MatrixXd> y) const {
+  const Eigen::Index vectors = x.cols() / densities_;
+  BEMSHAPE_ASSERT(x.cols() == vectors * densities_ && y.cols() == vectors * outputs_ &&
+                      x.rows() == cols_ && y.rows() == rows_,
+                  "H-matrix product: x must be #cols × densities·k and y #rows × outputs·k");
   const int threads = omp_get_max_threads();
   std::vector<Eigen::MatrixXd> partial(static_cast<size_t>(threads));
 #pragma omp parallel num_threads(threads)
   {
     Eigen::MatrixXd& mine = partial[static_cast<size_t>(omp_get_thread_num())];
-    mine = Eigen::MatrixXd::Zero(rows_, outputs_);
-    Eigen::VectorXd product;
+    mine = Eigen::MatrixXd::Zero(rows_, y.cols());
+    Eigen::MatrixXd product;
 #pragma omp for schedule(static, 1)
     for (std::size_t k = 0; k < blocks_.size(); ++k) {
       const Block& b = blocks_[k];
-      const Eigen::VectorXd xs = gather(x, b);
+      const Eigen::MatrixXd xs = gather(x, b);
       const Eigen::Index m = b.row_end - b.row_begin;
       if (b.is_low_rank && b.single_precision)
         product.noalias() = b.u_single.cast<double>() * (b.v_single.cast<double>().transpose() * xs);
@@ -164,7 +170,9 @@ void HierarchicalMatrix::multiply_add(const Eigen::Ref<const Eigen::MatrixXd>& x
         product.noalias() = b.low_rank.U * (b.low_rank.V.transpose() * xs);
       else
         product.noalias() = b.dense * xs;
-      for (int o = 0; o < outputs_; ++o) mine.col(o).segment(b.row_begin, m) += product.segment(o * m, m);
+      for (Eigen::Index j = 0; j < vectors; ++j)
+        for (int o = 0; o < outputs_; ++o)
+          mine.col(j * outputs_ + o).segment(b.row_begin, m) += product.col(j).segment(o * m, m);
     }
   }
   for (const Eigen::MatrixXd& p : partial) y += p;

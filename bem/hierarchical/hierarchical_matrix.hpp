@@ -85,8 +85,9 @@ class HierarchicalMatrix {
   int outputs() const { return outputs_; }
   const HierarchicalMatrixStats& stats() const { return stats_; }
 
-  /// y += A x with x: #cols×g (column d = density d), y: #rows×o (column o = output o), both
-  /// in tree order.
+  /// y += A x for k vectors at once, in tree order: x is #cols × g·k (column j·g + d =
+  /// density d of vector j), y is #rows × o·k (column j·o + o' = output o' of vector j).
+  /// Each block's storage is read once for all k vectors.
   void multiply_add(const Eigen::Ref<const Eigen::MatrixXd>& x, Eigen::Ref<Eigen::MatrixXd> y) const;
 
   /// The diagonal blocks A_d(C, C) of the index ranges C = [begin, end) in `ranges` (sorted,
@@ -104,7 +105,8 @@ class HierarchicalMatrix {
     bool is_low_rank = false;
     bool single_precision = false;  ///< the factors are u_single, v_single (rank may be 0)
   };
-  Eigen::VectorXd gather(const Eigen::Ref<const Eigen::MatrixXd>& x, const Block& b) const;
+  /// The block's column range of the k vectors of x: g|σ| × k, row d·|σ| + c, column j.
+  Eigen::MatrixXd gather(const Eigen::Ref<const Eigen::MatrixXd>& x, const Block& b) const;
 
   Eigen::Index rows_ = 0, cols_ = 0;
   int densities_ = 1, outputs_ = 1;

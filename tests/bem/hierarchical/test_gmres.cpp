@@ -2,7 +2,9 @@
 // direct solve; the reported residual is the true one; an exact preconditioner converges in
 // one step; a singular, inconsistent system is reported as not converged.
 #include <catch2/catch.hpp>
+#include <algorithm>
 #include <random>
+#include <vector>
 
 #include <Eigen/LU>
 
@@ -53,4 +55,60 @@ TEST_CASE("GMRES: an inconsistent singular system is reported as not converged")
   const bem::GmresResult r = bem::gmres(op, {}, b, x);
   CHECK(!r.converged);
   CHECK(r.residual == Approx(1.0 / std::sqrt(10.0)).epsilon(1e-6));
+}
+
+TEST_CASE("GMRES in lockstep: each column as if solved alone, one product per step for all") {
+  const int n = 150;
+  const Eigen::MatrixXd a = test_matrix(n, 11);
+  Eigen::MatrixXd b(n, 4);
+  b.col(0) = Eigen::VectorXd::LinSpaced(n, -1.0, 2.0);
+  b.col(1).setZero();                                         // done at once, x = 0
+  b.col(2) = a.col(5);                                        // x = e_5
+  b.col(3) = Eigen::VectorXd::LinSpaced(n, 0.0, 1.0).array().sin();
+  bem::GmresOptions options;
+  options.tolerance = 1e-9;
+  options.restart = 7;  // several restarts, at different steps for different columns
+  // A diagonal (Jacobi) preconditioner, so that the preconditioned path is exercised.
+  const Eigen::VectorXd inverse_diagonal = a.diagonal().cwiseInverse();
+
+  int block_products = 0, columns_multiplied = 0;
+  const bem::ColumnsOperator a_columns = [&](const Eigen::MatrixXd& x, Eigen::MatrixXd& y) {
+    ++block_products;
+    columns_multiplied += int(x.cols());
+    y = a * x;
+  };
+  const bem::ColumnsOperator m_columns = [&](const Eigen::MatrixXd& r, Eigen::MatrixXd& z) {
+    z = inverse_diagonal.asDiagonal() * r;
+  };
+  Eigen::MatrixXd x;
+  const std::vector<bem::GmresResult> together = bem::gmres_columns(a_columns, m_columns, b, x, options);
+  REQUIRE(together.size() == 4);
+
+  int separate_products = 0;
+  const bem::LinearOperator a_vector = [&](const Eigen::VectorXd& v, Eigen::VectorXd& y) {
+    ++separate_products;
+    y = a * v;
+  };
+  const bem::LinearOperator m_vector = [&](const Eigen::VectorXd& r, Eigen::VectorXd& z) {
+    z = inverse_diagonal.cwiseProduct(r);
+  };
+  for (int c = 0; c < 4; ++c) {
+    Eigen::VectorXd xc;
+    const bem::GmresResult alone = bem::gmres(a_vector, m_vector, b.col(c), xc, options);
+    CHECK(together[size_t(c)].converged);
+    CHECK(together[size_t(c)].iterations == alone.iterations);
+    CHECK(together[size_t(c)].residual == Approx(alone.residual).epsilon(1e-6).margin(1e-15));
+    CHECK((x.col(c) - xc).norm() <= 1e-12 * std::max(1.0, xc.norm()));
+    if (c != 1)
+      CHECK((b.col(c) - a * x.col(c)).norm() <= 1e-9 * b.col(c).norm());
+  }
+  CHECK(together[1].iterations == 0);
+  CHECK(x.col(1).isZero(0.0));
+  CHECK((x.col(2) - Eigen::VectorXd::Unit(n, 5)).norm() < 1e-8);
+  // The same products as alone, but gathered: as many blocks as the slowest column needs.
+  CHECK(columns_multiplied == separate_products);
+  int slowest = 0;
+  for (const auto& r : together) slowest = std::max(slowest, r.iterations);
+  CHECK(block_products < separate_products);
+  CHECK(block_products <= slowest + slowest / (options.restart - 1) + 2);
 }

@@ -130,6 +130,21 @@ TEST_CASE("rectangular H-matrix (two trees, three outputs, two densities) = dens
   h.multiply_add(v, out);
   const Eigen::VectorXd exact = dense * v.reshaped();  // rows o·900 + i
   CHECK((out.reshaped() - exact).norm() < 1e-7 * exact.norm());
+
+  // Three vectors at once (x: 700 × 2·3, y: 900 × 3·3) give each vector's product alone.
+  Eigen::MatrixXd v3(700, 6);
+  for (double& e : v3.reshaped()) e = u(rng) - 0.5;
+  Eigen::MatrixXd out3 = Eigen::MatrixXd::Zero(900, 9);
+  h.multiply_add(v3, out3);
+  for (int j = 0; j < 3; ++j) {
+    Eigen::MatrixXd alone = Eigen::MatrixXd::Zero(900, 3);
+    h.multiply_add(v3.middleCols(2 * j, 2), alone);
+    CHECK((out3.middleCols(3 * j, 3) - alone).norm() <= 1e-14 * alone.norm());
+    const Eigen::MatrixXd vj = v3.middleCols(2 * j, 2);
+    const Eigen::VectorXd exact_j = dense * vj.reshaped();
+    const Eigen::MatrixXd outj = out3.middleCols(3 * j, 3);
+    CHECK((outj.reshaped() - exact_j).norm() < 1e-7 * exact_j.norm());
+  }
 }
 
 namespace {
