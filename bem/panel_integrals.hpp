@@ -62,12 +62,51 @@ inline const TriangleRule* select_far_field_rule_squared(double distance_squared
 
 /// Single and double layer (and gradients) of `panel` at x by the triangle rule `rule`.
 /// Accurate only for targets away from the panel (see select_far_field_rule).
+///
+/// Without gradients and with at least kArrayRulePoints points the sums run on Eigen arrays,
+/// so that the square roots and (Yukawa) exponentials use the SIMD width the build targets:
+/// with G = E(r)/(4πr), E = 1 or e^{−κr}, and d = (x − c_0)·n,
+///   V = |T| Σ_q w_q G(r_q),   K = |T| d Σ_q w_q E(r_q)(1 + κr_q)/(4π r_q³).
+/// Smaller rules (the Laplace far field's 3 and 7 points) stay point by point.
+inline constexpr int kArrayRulePoints = 12;
+
 template <class Kernel>
 PanelIntegrals gauss_panel_integrals(const Kernel& kernel, const Panel& panel,
                                      const Eigen::Vector3d& x, const TriangleRule& rule,
                                      bool with_gradients) {
   PanelIntegrals out;
   const double d = (x - panel.corners[0]).dot(panel.normal);
+  if (!with_gradients && rule.size() >= kArrayRulePoints) {
+    constexpr Eigen::Index kMaxPoints = 64;  // the largest rule of far_field_rules()
+    using Points = Eigen::Array<double, Eigen::Dynamic, 1, 0, kMaxPoints, 1>;
+    using Nodes = Eigen::Map<const Eigen::ArrayXd>;
+    const auto m = static_cast<Eigen::Index>(rule.size());
+    if (m <= kMaxPoints) {
+      const Nodes xi(rule.xi.data(), m), eta(rule.eta.data(), m), w(rule.weight.data(), m);
+      const Eigen::Vector3d a = x - panel.corners[0];
+      const Eigen::Vector3d& e1 = panel.edge1;
+      const Eigen::Vector3d& e2 = panel.edge2;
+      const Points dx = a.x() - xi * e1.x() - eta * e2.x();
+      const Points dy = a.y() - xi * e1.y() - eta * e2.y();
+      const Points dz = a.z() - xi * e1.z() - eta * e2.z();
+      const Points r2 = dx.square() + dy.square() + dz.square();
+      const Points inv_r = r2.rsqrt();
+      double sl = 0.0, dl = 0.0;
+      if constexpr (Kernel::has_exponential_decay) {
+        const double kappa = kernel.kappa();
+        const Points r = r2 * inv_r;
+        const Points we = w * (-kappa * r).exp();
+        sl = (we * inv_r).sum();
+        dl = (we * (1.0 + kappa * r) * inv_r.cube()).sum();
+      } else {
+        sl = (w * inv_r).sum();
+        dl = (w * inv_r.cube()).sum();
+      }
+      out.single_layer = Kernel::inv_four_pi * panel.area * sl;
+      out.double_layer = Kernel::inv_four_pi * panel.area * d * dl;
+      return out;
+    }
+  }
   double sl = 0.0, dl_factor = 0.0;
   Eigen::Vector3d g_sl = Eigen::Vector3d::Zero(), g_dl = Eigen::Vector3d::Zero();
   for (int q = 0; q < rule.size(); ++q) {

@@ -136,6 +136,31 @@ HierarchicalMatrix::HierarchicalMatrix(const ClusterTree& row_tree, const Cluste
   }
 }
 
+namespace {
+
+/// product = U (Vᵀ x) for factors stored in single precision, in double arithmetic. The
+/// factors are converted a few rows at a time into `chunk` (it stays in cache), so a product
+/// reads 4 bytes per factor entry and writes no double copy of the factors.
+void single_precision_product(const Eigen::MatrixXf& u, const Eigen::MatrixXf& v,
+                              const Eigen::MatrixXd& x, Eigen::MatrixXd& product,
+                              Eigen::MatrixXd& chunk) {
+  constexpr Eigen::Index kRows = 128;
+  Eigen::MatrixXd t = Eigen::MatrixXd::Zero(v.cols(), x.cols());
+  for (Eigen::Index i = 0; i < v.rows(); i += kRows) {
+    const Eigen::Index m = std::min(kRows, v.rows() - i);
+    chunk = v.middleRows(i, m).cast<double>();
+    t.noalias() += chunk.transpose() * x.middleRows(i, m);
+  }
+  product.resize(u.rows(), x.cols());
+  for (Eigen::Index i = 0; i < u.rows(); i += kRows) {
+    const Eigen::Index m = std::min(kRows, u.rows() - i);
+    chunk = u.middleRows(i, m).cast<double>();
+    product.middleRows(i, m).noalias() = chunk * t;
+  }
+}
+
+}  // namespace
+
 Eigen::MatrixXd HierarchicalMatrix::gather(const Eigen::Ref<const Eigen::MatrixXd>& x,
                                            const Block& b) const {
   const Eigen::Index n = b.col_end - b.col_begin, vectors = x.cols() / densities_;
@@ -158,14 +183,14 @@ void HierarchicalMatrix::multiply_add(const Eigen::Ref<const Eigen::MatrixXd>& x
   {
     Eigen::MatrixXd& mine = partial[static_cast<size_t>(omp_get_thread_num())];
     mine = Eigen::MatrixXd::Zero(rows_, y.cols());
-    Eigen::MatrixXd product;
+    Eigen::MatrixXd product, chunk;
 #pragma omp for schedule(static, 1)
     for (std::size_t k = 0; k < blocks_.size(); ++k) {
       const Block& b = blocks_[k];
       const Eigen::MatrixXd xs = gather(x, b);
       const Eigen::Index m = b.row_end - b.row_begin;
       if (b.is_low_rank && b.single_precision)
-        product.noalias() = b.u_single.cast<double>() * (b.v_single.cast<double>().transpose() * xs);
+        single_precision_product(b.u_single, b.v_single, xs, product, chunk);
       else if (b.is_low_rank)
         product.noalias() = b.low_rank.U * (b.low_rank.V.transpose() * xs);
       else

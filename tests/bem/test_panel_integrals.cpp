@@ -239,3 +239,40 @@ TEST_CASE("far-field rule table: measured errors (prints the table)",
     }
   }
 }
+
+TEST_CASE("gauss_panel_integrals: the array evaluation of large rules equals the sum point by point",
+          "[panel_integrals]") {
+  // Every rule of 12 points or more that far_field_rules() or the attenuated class uses, on
+  // three panel shapes and targets in several directions and distances; the reference is
+  // the definition Σ w_q G(r_q) and Σ w_q ∂G/∂n_y written out here with the kernels' scalar
+  // values.
+  const std::vector<const bem::TriangleRule*> rules = {
+      &bem::symmetric_triangle_rule(6), &bem::symmetric_triangle_rule(8),
+      &bem::collapsed_gauss_rule(4), &bem::collapsed_gauss_rule(6), &bem::collapsed_gauss_rule(8)};
+  const auto check = [&](const auto& kernel) {
+    int checked = 0;
+    for (const bem::Panel& panel : test_panels())
+      for (const Vector3d& dir : directions(7, 5))
+        for (const double distance : {1.6, 3.0, 9.0})
+          for (const bem::TriangleRule* rule : rules) {
+            REQUIRE(rule->size() >= bem::kArrayRulePoints);
+            const Vector3d x = panel.centroid + distance * panel.diameter * dir;
+            double sl = 0.0, dl = 0.0;
+            for (int q = 0; q < rule->size(); ++q) {
+              const auto i = static_cast<size_t>(q);
+              const Vector3d y = panel.corners[0] + rule->xi[i] * panel.edge1 + rule->eta[i] * panel.edge2;
+              const double r = (x - y).norm();
+              sl += rule->weight[i] * kernel.value(r);
+              // ∂G/∂n_y = G'(r) (y − x)·n / r
+              dl += rule->weight[i] * kernel.radial_derivative(r) * (y - x).dot(panel.normal) / r;
+            }
+            const bem::PanelIntegrals p = bem::gauss_panel_integrals(kernel, panel, x, *rule, false);
+            CHECK(p.single_layer == Approx(panel.area * sl).epsilon(1e-13));
+            CHECK(p.double_layer == Approx(panel.area * dl).epsilon(1e-12).margin(1e-15 * std::abs(panel.area * sl)));
+            ++checked;
+          }
+    CHECK(checked == 3 * 7 * 3 * 5);
+  };
+  check(LaplaceKernel{});
+  check(YukawaKernel{2.0});
+}
