@@ -104,11 +104,14 @@ struct YukawaAttenuation {
 inline int attenuated_rule_points(double attenuation, double kappa_diameter, double ratio) {
   double taylor = 1.0;  // (κ·diam/2)^m / m!, m = 2n − 1
   const double half = 0.5 * kappa_diameter;
+  const double inverse_ratio = 1.0 / ratio;
+  double inverse_power = inverse_ratio;  // ratio^−(2n−1), by products (no pow per entry)
   int m = 0;
   for (int n = 1; n <= 8; ++n) {
     for (; m < 2 * n - 1; ++m) taylor *= half / (m + 1);
-    const double estimate = attenuation * (taylor + std::pow(ratio, -(2 * n - 1)));
+    const double estimate = attenuation * (taylor + inverse_power);
     if (estimate < YukawaAttenuation::absolute_accuracy) return n;
+    inverse_power *= inverse_ratio * inverse_ratio;
   }
   return 0;
 }
