@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <sstream>
+#include <string>
 
 #include "bem/hierarchical/galerkin_block_generator.hpp"
 #include "bem/hierarchical/gmres.hpp"
@@ -30,7 +31,7 @@ constexpr double kTypicalRank = 16.0;
 
 }  // namespace
 
-std::uint64_t hmatrix_solver_memory_estimate(Eigen::Index faces,
+std::uint64_t hmatrix_solver_memory_estimate(Eigen::Index faces, double exterior_entries_per_row,
                                              const HMatrixSolverOptions& options) {
   const double n = double(faces);
   // Near field: each leaf meets O(1) leaves densely (measured on a sphere: 30 at η = 1, 20
@@ -42,9 +43,8 @@ std::uint64_t hmatrix_solver_memory_estimate(Eigen::Index faces,
   const double factor_bytes = options.single_precision_factors ? 4.0 : 8.0;
   const double laplace = n * (8.0 * 2.0 * near_leaves * leaf +
                               factor_bytes * levels * 6.0 * 3.0 * kTypicalRank);
-  // Yukawa: up to ≈ 1400 nonzeros per row at the default element size, 12 bytes each in
-  // the row lists while assembling and again in the matrix.
-  const double yukawa = 24.0 * 1400.0 * n;
+  // Yukawa: 12 bytes per entry (value and 32-bit column), written in place.
+  const double yukawa = 12.0 * exterior_entries_per_row * n;
   const double preconditioner =
       double(ClusterBlockPreconditioner::bytes_for(faces, options.preconditioner_block));
   // Three Krylov bases (one per direction, solved in lockstep) and their work vectors.
@@ -58,10 +58,16 @@ BoundarySolution solve_transmission_hmatrix(const geometry::SurfaceMesh& mesh,
                                             const ProgressCallback& progress) {
   const Eigen::Index n = mesh.num_faces();
   if (n == 0) throw InputError("the mesh has no faces");
-  require_memory(hmatrix_solver_memory_estimate(n, options), "the hierarchical-matrix BEM system",
+  const std::vector<Panel> panels = make_panels(mesh);
+  // Exterior entries below 1e−2·ε of an unattenuated one are dropped: the same budget the
+  // compression of the Laplace part works to (1e−10 at the default ε, the dense path's rule).
+  const double negligible = 1e-2 * options.aca_tolerance;
+  require_memory(hmatrix_solver_memory_estimate(
+                     n, yukawa_near_field_entries_per_row(panels, parameters.kappa, negligible),
+                     options),
+                 "the hierarchical-matrix BEM system of " + std::to_string(n) + " faces",
                  "use a coarser mesh (larger --max-edge)", options.max_memory_bytes);
   const auto start = Clock::now();
-  const std::vector<Panel> panels = make_panels(mesh);
   const ClusterTree tree(panels, options.leaf_size);
   const auto& perm = tree.permutation();
 
@@ -72,10 +78,8 @@ BoundarySolution solve_transmission_hmatrix(const geometry::SurfaceMesh& mesh,
       {options.aca_tolerance, options.eta, options.single_precision_factors}, progress);
   const double interior_seconds = seconds_since(start);
   report_progress(progress, "assemble exterior", 0.0);
-  // Exterior entries below 1e−2·ε of an unattenuated one are dropped: the same budget the
-  // compression of the Laplace part works to (1e−10 at the default ε, the dense path's rule).
-  const SparseRowMatrix yukawa = assemble_yukawa_near_field(
-      panels, tree, parameters.kappa, 1e-2 * options.aca_tolerance, progress);
+  const SparseRowMatrix yukawa =
+      assemble_yukawa_near_field(panels, tree, parameters.kappa, negligible, progress);
   const double exterior_seconds = seconds_since(start) - interior_seconds;
   Eigen::VectorXd half_mass(n);
   for (Eigen::Index p = 0; p < n; ++p) half_mass(p) = 0.5 * mesh.face_areas()(perm[size_t(p)]);

@@ -50,8 +50,11 @@ struct HMatrixSolverOptions {
 };
 
 /// Bytes the fast path is expected to hold for `faces` faces (the guard's estimate: near
-/// field, low-rank factors at a typical rank, preconditioner, Krylov basis).
-std::uint64_t hmatrix_solver_memory_estimate(Eigen::Index faces, const HMatrixSolverOptions& options);
+/// field, low-rank factors at a typical rank, the exterior matrix with
+/// `exterior_entries_per_row` entries per row (yukawa_near_field_entries_per_row),
+/// preconditioner, Krylov bases).
+std::uint64_t hmatrix_solver_memory_estimate(Eigen::Index faces, double exterior_entries_per_row,
+                                             const HMatrixSolverOptions& options);
 
 /// Solves for s_1, s_2, s_3 on a closed, outward-oriented mesh. Throws ResourceError if the
 /// estimate does not fit and NumericalError if GMRES does not reach the tolerance or the

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <limits>
 #include <new>
+#include <numbers>
 #include <string>
 #include <cmath>
 #include <vector>
@@ -13,10 +14,26 @@
 #include "bem/yukawa_kernel.hpp"
 #include "core/errors.hpp"
 #include "core/cancellation.hpp"
+#include "core/memory.hpp"
 
 namespace bemshape::bem {
 
 double yukawa_cutoff_gap(double kappa, double negligible) { return -std::log(negligible) / kappa; }
+
+double yukawa_near_field_entries_per_row(const std::vector<Panel>& panels, double kappa,
+                                         double negligible) {
+  if (panels.empty()) return 0.0;
+  double radius = 0.0, area = 0.0;
+  for (const Panel& p : panels) {
+    radius += p.radius;
+    area += p.area;
+  }
+  radius /= double(panels.size());
+  area /= double(panels.size());
+  // A panel is kept when its centroid lies within g* + r_j + r_k of the row's.
+  const double reach = yukawa_cutoff_gap(kappa, negligible) + 2.0 * radius;
+  return std::min(2.0 * double(panels.size()), 2.0 * std::numbers::pi * reach * reach / area);
+}
 
 namespace {
 
@@ -87,6 +104,12 @@ SparseRowMatrix assemble_yukawa_near_field(const std::vector<Panel>& panels,
                         std::to_string(room.sum()) + " entries, more than its 32-bit index allows (" +
                         std::to_string(std::numeric_limits<std::int32_t>::max()) +
                         "); use a coarser mesh (larger --max-edge)");
+  // The exact size, before anything of it is allocated: a mesh much finer than κ·h = 3, or
+  // thin walls, can hold many times the entries the solver's estimate assumed.
+  require_memory(12 * std::uint64_t(room.sum()) + 8 * std::uint64_t(n),
+                 "the exterior near field of " + std::to_string(n) + " faces (" +
+                     std::to_string(room.sum()) + " entries)",
+                 "use a coarser mesh (larger --max-edge)");
   SparseRowMatrix y(n, 2 * n);
   try {
     y.reserve(room);  // uncompressed: row i owns room(i) slots from outerIndexPtr()[i]

@@ -79,8 +79,8 @@ TEST_CASE("read-only output folder: exit 2 before any work is lost to a failed w
 }
 
 TEST_CASE("ulimit -v 2 GB: a 4 GB dense system is refused by the guard, naming the limit") {
-  // The dense path only: the H-matrix path has no estimate of its memory before it
-  // allocates (docs/reliability.md).
+  // The dense path; the H-matrix path's estimate is checked against --max-memory in
+  // test_run_limits.cpp.
 #if defined(__SANITIZE_ADDRESS__)
   WARN("AddressSanitizer reserves terabytes of address space: ulimit -v not checked");
   return;

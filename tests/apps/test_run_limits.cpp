@@ -194,6 +194,21 @@ TEST_CASE("max-memory with units: too small is refused naming the option, bad un
   CHECK(r.exit_code == 0);  // plain number: MB
 }
 
+TEST_CASE("hmatrix --max-memory: the exterior matrix's size follows the element size in kappa") {
+  // h0 = 3 on a ball of radius 0.5: κ = 2/(a·h0) = 3.3 and the exterior cutoff 23/κ = 7 is
+  // wider than the ball, so every pair of the N ≈ 10⁴ solver faces at --max-edge 0.03 is
+  // kept: 2N entries per exterior row, 12·2N² bytes, several GB. An estimate at the default
+  // element size's ~1300 entries per row would put the whole solver below 1 GB and let it
+  // start.
+  const std::string mesh = write_mesh(geometry::make_geodesic_sphere(0.5, 8), "wide_cutoff_ball.stl");
+  const Run r = run_bemshape("thickness '" + mesh +
+                             "' --h0 3 --max-edge 0.03 --solver hmatrix --max-memory 1G --quiet");
+  CAPTURE(r.err);
+  CHECK(r.exit_code == 2);
+  CHECK_THAT(r.err, Catch::Contains("the hierarchical-matrix BEM system of") &&
+                        Catch::Contains("(--max-memory)") && Catch::Contains("--max-edge"));
+}
+
 namespace {
 
 /// The options a refusal message suggests: what follows "e.g. " up to ", or" or the end of
