@@ -50,10 +50,10 @@ struct HMatrixSolverOptions {
 };
 
 /// Bytes the fast path is expected to hold for `faces` faces (the guard's estimate: near
-/// field, low-rank factors at a typical rank, the exterior matrix with
-/// `exterior_entries_per_row` entries per row (yukawa_near_field_entries_per_row),
-/// preconditioner, Krylov bases).
-std::uint64_t hmatrix_solver_memory_estimate(Eigen::Index faces, double exterior_entries_per_row,
+/// field and low-rank factors at a typical rank, the exterior matrix of
+/// `exterior_entries` entries (yukawa_near_field_row_sizes counts them), preconditioner,
+/// Krylov bases).
+std::uint64_t hmatrix_solver_memory_estimate(Eigen::Index faces, std::uint64_t exterior_entries,
                                              const HMatrixSolverOptions& options);
 
 /// Solves for s_1, s_2, s_3 on a closed, outward-oriented mesh. Throws ResourceError if the

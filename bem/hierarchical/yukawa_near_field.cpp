@@ -5,13 +5,13 @@
 #include <cstdint>
 #include <limits>
 #include <new>
-#include <numbers>
 #include <string>
 #include <cmath>
 #include <vector>
 
 #include "bem/galerkin_operators.hpp"
 #include "bem/yukawa_kernel.hpp"
+#include "core/assert.hpp"
 #include "core/errors.hpp"
 #include "core/cancellation.hpp"
 #include "core/memory.hpp"
@@ -19,21 +19,6 @@
 namespace bemshape::bem {
 
 double yukawa_cutoff_gap(double kappa, double negligible) { return -std::log(negligible) / kappa; }
-
-double yukawa_near_field_entries_per_row(const std::vector<Panel>& panels, double kappa,
-                                         double negligible) {
-  if (panels.empty()) return 0.0;
-  double radius = 0.0, area = 0.0;
-  for (const Panel& p : panels) {
-    radius += p.radius;
-    area += p.area;
-  }
-  radius /= double(panels.size());
-  area /= double(panels.size());
-  // A panel is kept when its centroid lies within g* + r_j + r_k of the row's.
-  const double reach = yukawa_cutoff_gap(kappa, negligible) + 2.0 * radius;
-  return std::min(2.0 * double(panels.size()), 2.0 * std::numbers::pi * reach * reach / area);
-}
 
 namespace {
 
@@ -52,26 +37,40 @@ void candidate_panels(const Panel& test, const ClusterTree& tree, double reach,
 
 }  // namespace
 
-SparseRowMatrix assemble_yukawa_near_field(const std::vector<Panel>& panels,
-                                           const ClusterTree& tree, double kappa,
-                                           double negligible, const ProgressCallback& progress) {
-  const GalerkinOperators<YukawaKernel> yukawa(YukawaKernel{kappa}, panels);
+namespace {
+
+/// What decides which entries of a row are kept: the cutoff gap g* and the reach of the
+/// candidate search around a panel's box.
+struct Cutoff {
+  double gap = 0.0, reach = 0.0;
+  Cutoff(const std::vector<Panel>& panels, double kappa, double negligible) {
+    double max_radius = 0.0;
+    for (const Panel& p : panels) max_radius = std::max(max_radius, p.radius);
+    // The dense path drops an entry when gap = |c_j − c_k| − r_j − r_k > g*; the distance
+    // of the boxes around the panels is at most |c_j − c_k|, so clusters farther than
+    // g* + 2·max radius hold no kept entry.
+    gap = yukawa_cutoff_gap(kappa, negligible);
+    reach = gap + 2.0 * max_radius;
+  }
+  bool kept(const Panel& test, const Panel& trial) const {
+    return (test.centroid - trial.centroid).norm() - test.radius - trial.radius <= gap;
+  }
+};
+
+ResourceError ran_out_of_memory(Eigen::Index n) {
+  return ResourceError("the exterior near field of " + std::to_string(n) +
+                       " faces ran out of memory while assembling; use a coarser mesh "
+                       "(larger --max-edge)");
+}
+
+}  // namespace
+
+Eigen::VectorX<Eigen::Index> yukawa_near_field_row_sizes(const std::vector<Panel>& panels,
+                                                         const ClusterTree& tree, double kappa,
+                                                         double negligible) {
   const auto& perm = tree.permutation();
   const Eigen::Index n = tree.root().size();
-  double max_radius = 0.0;
-  for (const Panel& p : panels) max_radius = std::max(max_radius, p.radius);
-  // The dense path drops an entry when gap = |c_j − c_k| − r_j − r_k > g*; the distance of
-  // the boxes around the panels is at most |c_j − c_k|, so clusters farther than
-  // g* + 2·max radius hold no kept entry.
-  const double cutoff = yukawa_cutoff_gap(kappa, negligible);
-  const double reach = cutoff + 2.0 * max_radius;
-  const auto kept = [&](const Panel& test, const Panel& trial) {
-    return (test.centroid - trial.centroid).norm() - test.radius - trial.radius <= cutoff;
-  };
-
-  // Two passes, so that the rows are written straight into the matrix and nothing else of
-  // its size is ever held: first each row's room (two entries, Kκ and Vκ, per panel within
-  // the cutoff: a bound, since Kκ vanishes between coplanar panels), then the entries.
+  const Cutoff cutoff(panels, kappa, negligible);
   Eigen::VectorX<Eigen::Index> room(n);
   std::atomic<bool> out_of_memory{false};
 #pragma omp parallel
@@ -83,9 +82,9 @@ SparseRowMatrix assemble_yukawa_near_field(const std::vector<Panel>& panels,
       if (cancellation_requested() || out_of_memory) continue;
       try {
         const Panel& test = panels[size_t(perm[size_t(i)])];
-        candidate_panels(test, tree, reach, near, stack);
+        candidate_panels(test, tree, cutoff.reach, near, stack);
         Eigen::Index count = 0;
-        for (const Eigen::Index j : near) count += kept(test, panels[size_t(perm[size_t(j)])]);
+        for (const Eigen::Index j : near) count += cutoff.kept(test, panels[size_t(perm[size_t(j)])]);
         room(i) = 2 * count;
       } catch (const std::bad_alloc&) {
         out_of_memory = true;  // reported after the loop: an exception cannot leave it
@@ -93,19 +92,32 @@ SparseRowMatrix assemble_yukawa_near_field(const std::vector<Panel>& panels,
     }
   }
   throw_if_cancelled();
-  const auto ran_out = [n] {
-    return ResourceError("the exterior near field of " + std::to_string(n) +
-                         " faces ran out of memory while assembling; use a coarser mesh "
-                         "(larger --max-edge)");
-  };
-  if (out_of_memory) throw ran_out();
+  if (out_of_memory) throw ran_out_of_memory(n);
+  return room;
+}
+
+SparseRowMatrix assemble_yukawa_near_field(const std::vector<Panel>& panels,
+                                           const ClusterTree& tree, double kappa,
+                                           double negligible, const ProgressCallback& progress,
+                                           const Eigen::VectorX<Eigen::Index>* row_sizes) {
+  const GalerkinOperators<YukawaKernel> yukawa(YukawaKernel{kappa}, panels);
+  const auto& perm = tree.permutation();
+  const Eigen::Index n = tree.root().size();
+  const Cutoff cutoff(panels, kappa, negligible);
+  // Two passes, so that the rows are written straight into the matrix and nothing else of
+  // its size is ever held: first each row's room (yukawa_near_field_row_sizes), then the
+  // entries.
+  const Eigen::VectorX<Eigen::Index> room =
+      row_sizes ? *row_sizes : yukawa_near_field_row_sizes(panels, tree, kappa, negligible);
+  BEMSHAPE_ASSERT(room.size() == n, "exterior near field: one row size per panel");
+  const auto ran_out = [n] { return ran_out_of_memory(n); };
+  std::atomic<bool> out_of_memory{false};
   if (room.sum() > std::numeric_limits<std::int32_t>::max())
     throw ResourceError("the exterior near field of " + std::to_string(n) + " faces needs up to " +
                         std::to_string(room.sum()) + " entries, more than its 32-bit index allows (" +
                         std::to_string(std::numeric_limits<std::int32_t>::max()) +
                         "); use a coarser mesh (larger --max-edge)");
-  // The exact size, before anything of it is allocated: a mesh much finer than κ·h = 3, or
-  // thin walls, can hold many times the entries the solver's estimate assumed.
+  // The exact size against the memory left now (the interior H-matrix is already held).
   require_memory(12 * std::uint64_t(room.sum()) + 8 * std::uint64_t(n),
                  "the exterior near field of " + std::to_string(n) + " faces (" +
                      std::to_string(room.sum()) + " entries)",
@@ -134,14 +146,14 @@ SparseRowMatrix assemble_yukawa_near_field(const std::vector<Panel>& panels,
       if (cancellation_requested() || out_of_memory) continue;
       try {
         const Panel& test = panels[size_t(perm[size_t(i)])];
-        candidate_panels(test, tree, reach, near, stack);
+        candidate_panels(test, tree, cutoff.reach, near, stack);
         single.clear();
         std::int32_t* const row_columns = columns + row_start[i];
         double* const row_values = values + row_start[i];
         std::int32_t count = 0;  // at most two per kept panel: within room(i)
         for (const Eigen::Index j : near) {
           const Panel& trial = panels[size_t(perm[size_t(j)])];
-          if (!kept(test, trial)) continue;
+          if (!cutoff.kept(test, trial)) continue;
           const auto e = yukawa.entry(perm[size_t(i)], perm[size_t(j)]);
           if (e.double_layer != 0.0) {
             row_columns[count] = static_cast<std::int32_t>(j);

@@ -31,23 +31,25 @@ using SparseRowMatrix = Eigen::SparseMatrix<double, Eigen::RowMajor, std::int32_
 /// g* = −ln(negligible)/κ [model units].
 double yukawa_cutoff_gap(double kappa, double negligible);
 
-/// Entries per row the exterior matrix is expected to hold: two (Kκ, Vκ) per panel within
-/// the cutoff, counted on a flat surface, 2π(g* + 2r̄)²/|T̄| with r̄ the mean panel radius
-/// and |T̄| the mean panel area. About 1200 at the default element size κ·h = 3 (1340 are
-/// stored on a sphere: docs/benchmarks.md); it grows as
-/// (κ·h)^−2 on finer meshes, and thin walls whose two sides lie within g* hold up to twice
-/// as many (assemble_yukawa_near_field counts them exactly before it allocates).
-double yukawa_near_field_entries_per_row(const std::vector<Panel>& panels, double kappa,
-                                         double negligible);
+/// The number of entries each row of Y will hold, in tree order: two (Kκ, Vκ) per panel
+/// within the cutoff (a bound: Kκ vanishes between coplanar panels). The candidate search
+/// only, no integrals: what the memory guard needs before anything is assembled. About
+/// 1300 per row at the default element size κ·h = 3 on a curved surface; it grows as
+/// (κ·h)^−2 on finer meshes and doubles on walls thinner than the cutoff.
+Eigen::VectorX<Eigen::Index> yukawa_near_field_row_sizes(const std::vector<Panel>& panels,
+                                                         const ClusterTree& tree, double kappa,
+                                                         double negligible);
 
 /// Assembles Y for the panels in tree order (parallel over rows; each row is computed the
 /// same way whatever the thread count). Entries between panels whose gap
 /// |c_j − c_k| − r_j − r_k gives e^{−κ·gap} < `negligible` are dropped; the default is the
 /// dense path's threshold, larger values (the H-matrix solver passes 1e−2·ε) trade entries
-/// below the compression tolerance for fewer nonzeros. The entries are counted first; if
-/// they do not fit in the memory the machine has left (core/memory.hpp), ResourceError.
+/// below the compression tolerance for fewer nonzeros. If the counted entries do not fit in
+/// the memory the machine has left (core/memory.hpp), ResourceError before any is stored.
+/// `row_sizes`: yukawa_near_field_row_sizes of the same arguments, if already counted.
 SparseRowMatrix assemble_yukawa_near_field(
     const std::vector<Panel>& panels, const ClusterTree& tree, double kappa,
-    double negligible = YukawaAttenuation::negligible, const ProgressCallback& progress = {});
+    double negligible = YukawaAttenuation::negligible, const ProgressCallback& progress = {},
+    const Eigen::VectorX<Eigen::Index>* row_sizes = nullptr);
 
 }  // namespace bemshape::bem

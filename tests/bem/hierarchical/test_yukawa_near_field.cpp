@@ -45,4 +45,18 @@ TEST_CASE("Yukawa near field: every nonzero entry of the dense operator, nothing
   }
   CHECK(unsorted == 0);
   CHECK(nonzero < n * n);  // the cutoff drops something on this plate
+
+  // The row sizes the memory guard counts before assembly: two per panel with a nonzero
+  // single-layer entry (every panel within the cutoff has one), at least the stored ones.
+  const Eigen::VectorX<Eigen::Index> sizes =
+      bem::yukawa_near_field_row_sizes(panels, tree, kappa, bem::YukawaAttenuation::negligible);
+  REQUIRE(sizes.size() == n);
+  Eigen::Index wrong = 0;
+  for (Eigen::Index i = 0; i < n; ++i) {
+    Eigen::Index single = 0;
+    for (Eigen::Index j = 0; j < n; ++j) single += sparse(i, n + j) != 0.0;
+    wrong += sizes(i) != 2 * single;
+    wrong += sizes(i) < y.row(i).nonZeros();
+  }
+  CHECK(wrong == 0);
 }
