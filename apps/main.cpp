@@ -32,7 +32,9 @@ int main(int argc, char** argv) {
   CLI::App app{
       "bemshape: local wall thickness, orientation and skeleton of solid parts given as closed "
       "triangle meshes (STL, OBJ, OFF, PLY). Lengths are in the units of the input file."};
-  app.set_version_flag("--version", std::string("bemshape ") + BEMSHAPE_VERSION);
+  // The instruction set the build targets (BEMSHAPE_ARCH): timings depend on it.
+  app.set_version_flag("--version", std::string("bemshape ") + BEMSHAPE_VERSION + " (-march=" +
+                                        (*BEMSHAPE_ARCH_NAME ? BEMSHAPE_ARCH_NAME : "compiler default") + ")");
   app.require_subcommand(1, 1);
   app.fallthrough(false);
 

@@ -166,7 +166,8 @@ nlohmann::json report_json(const ThicknessOptions& options, double h0, const Bou
                                {"max_edge", run.max_edge},
                                {"max_edge_rule", run.max_edge_rule},
                                {"min_thickness", nullptr},
-                               {"threads", omp_get_max_threads()}};
+                               {"threads", omp_get_max_threads()},
+                               {"march", BEMSHAPE_ARCH_NAME}};
   if (options.min_thickness)
     parameters["min_thickness"] = *options.min_thickness;
   nlohmann::json check = nullptr;

@@ -68,6 +68,7 @@ TEST_CASE("ball: surface h_p and h_f within 2 % of the closed form, n_f along th
   CHECK(report["parameters"]["measure"] == "principal");
   CHECK(report["parameters"]["max_edge"].get<double>() == Approx(1.5 * 0.2 * 0.3));
   CHECK(report["parameters"]["max_edge_rule"].get<std::string>().starts_with("default"));
+  CHECK(report["parameters"]["march"].is_string());  // the build's instruction set
   CHECK(report["mesh"]["input_faces"] == 1280);
   CHECK(report["check"].is_null());  // no --min-thickness
   CHECK(report["solver"]["method"] == "dense-lu");
