@@ -4,9 +4,9 @@
 // (geometry/isotropic_remeshing.hpp) and solve the transmission problem for s_1, s_2, s_3
 // (bem/dense_transmission_solver.hpp).
 //
-// Element size: the longest edge of the solver mesh is about `max_edge` if the user gave it,
-// else the default rule TransmissionParameters::default_max_edge() = 3/κ = 1.5·a·h0
-// [model units].
+// Element size: the solver mesh's edges are about `max_edge` (none longer than 1.3 times
+// it, geometry::RemeshingOptions::max_edge_ratio) if the user gave it, else the default rule
+// TransmissionParameters::default_max_edge() = 3/κ = 1.5·a·h0 [model units].
 
 #include <cstdint>
 #include <functional>
