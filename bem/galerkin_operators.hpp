@@ -271,13 +271,11 @@ class GalerkinOperators {
     const Eigen::Vector3d s2 = corner(trial, order.trial, 2) - corner(trial, order.trial, 1);
     const Eigen::Vector3d& n = trial.normal;
     const double an = a.dot(n), t1n = t1.dot(n), t2n = t2.dot(n);
-    // Both kernels are G = c·E(r)/r with E = 1 (Laplace) or e^{−κr} (Yukawa), so
-    // −G'(r)/r = c·E(r)(1 + κr)/r³. Evaluated in chunks as Eigen arrays, which vectorise the
-    // square roots and exponentials.
+    // Evaluated in chunks as Eigen arrays (radial_kernel_sums), which vectorise the square
+    // roots and exponentials.
     constexpr Eigen::Index chunk = 256;
     using Chunk = Eigen::Array<double, Eigen::Dynamic, 1, 0, chunk, 1>;
     using Nodes = Eigen::Map<const Eigen::ArrayXd>;
-    const double kappa = kernel_.kappa();
     const auto size = static_cast<Eigen::Index>(rule.size());
     double sl = 0.0, dl = 0.0;
     for (Eigen::Index begin = 0; begin < size; begin += chunk) {
@@ -289,18 +287,11 @@ class GalerkinOperators {
       const Chunk dy = a.y() + x1 * t1.y() + x2 * t2.y() - y1 * s1.y() - y2 * s2.y();
       const Chunk dz = a.z() + x1 * t1.z() + x2 * t2.z() - y1 * s1.z() - y2 * s2.z();
       const Chunk r2 = dx.square() + dy.square() + dz.square();
-      const Chunk inv_r = r2.rsqrt();
       // (x − y)·n_k: the trial panel's own edges are orthogonal to n_k.
       const Chunk d = an + x1 * t1n + x2 * t2n;
-      if constexpr (Kernel::has_exponential_decay) {
-        const Chunk r = r2 * inv_r;
-        const Chunk we = w * (-kappa * r).exp();
-        sl += (we * inv_r).sum();
-        dl += (we * d * (1.0 + kappa * r) * inv_r.cube()).sum();
-      } else {
-        sl += (w * inv_r).sum();
-        dl += (w * d * inv_r.cube()).sum();
-      }
+      const RadialSums sums = radial_kernel_sums(kernel_, r2, w, d);
+      sl += sums.single;
+      dl += sums.double_layer;
     }
     sl *= Kernel::inv_four_pi;
     dl *= Kernel::inv_four_pi;

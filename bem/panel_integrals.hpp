@@ -60,12 +60,34 @@ inline const TriangleRule* select_far_field_rule_squared(double distance_squared
   return nullptr;
 }
 
+/// The two sums a quadrature rule needs for both kernels, G = E(r)/(4πr) with E = 1
+/// (Laplace) or e^{−κr} (Yukawa), so that −G'(r)/r = E(r)(1 + κr)/(4πr³): over points at
+/// squared distances r2 with weights w and a factor f per point (an array, or a number),
+///   single = Σ_q w_q E(r_q)/r_q,   double_layer = Σ_q w_q f_q E(r_q)(1 + κr_q)/r_q³,
+/// both without the 1/(4π). Evaluated as Eigen arrays, so the square roots and exponentials
+/// use the SIMD width the build targets. `Array` is the plain array type of r2.
+struct RadialSums {
+  double single = 0.0, double_layer = 0.0;
+};
+template <class Kernel, class Array, class Weights, class Factor>
+RadialSums radial_kernel_sums(const Kernel& kernel, const Array& r2, const Weights& w,
+                              const Factor& f) {
+  const Array inv_r = r2.rsqrt();
+  if constexpr (Kernel::has_exponential_decay) {
+    const double kappa = kernel.kappa();
+    const Array r = r2 * inv_r;
+    const Array we = w * (-kappa * r).exp();
+    return {(we * inv_r).sum(), (we * f * (1.0 + kappa * r) * inv_r.cube()).sum()};
+  } else {
+    return {(w * inv_r).sum(), (w * f * inv_r.cube()).sum()};
+  }
+}
+
 /// Single and double layer (and gradients) of `panel` at x by the triangle rule `rule`.
 /// Accurate only for targets away from the panel (see select_far_field_rule).
 ///
-/// Without gradients and with at least kArrayRulePoints points the sums run on Eigen arrays,
-/// so that the square roots and (Yukawa) exponentials use the SIMD width the build targets:
-/// with G = E(r)/(4πr), E = 1 or e^{−κr}, and d = (x − c_0)·n,
+/// Without gradients and with at least kArrayRulePoints points the sums run on Eigen arrays
+/// (radial_kernel_sums), with d = (x − c_0)·n:
 ///   V = |T| Σ_q w_q G(r_q),   K = |T| d Σ_q w_q E(r_q)(1 + κr_q)/(4π r_q³).
 /// Smaller rules (the Laplace far field's 3 and 7 points) stay point by point.
 inline constexpr int kArrayRulePoints = 12;
@@ -90,20 +112,9 @@ PanelIntegrals gauss_panel_integrals(const Kernel& kernel, const Panel& panel,
       const Points dy = a.y() - xi * e1.y() - eta * e2.y();
       const Points dz = a.z() - xi * e1.z() - eta * e2.z();
       const Points r2 = dx.square() + dy.square() + dz.square();
-      const Points inv_r = r2.rsqrt();
-      double sl = 0.0, dl = 0.0;
-      if constexpr (Kernel::has_exponential_decay) {
-        const double kappa = kernel.kappa();
-        const Points r = r2 * inv_r;
-        const Points we = w * (-kappa * r).exp();
-        sl = (we * inv_r).sum();
-        dl = (we * (1.0 + kappa * r) * inv_r.cube()).sum();
-      } else {
-        sl = (w * inv_r).sum();
-        dl = (w * inv_r.cube()).sum();
-      }
-      out.single_layer = Kernel::inv_four_pi * panel.area * sl;
-      out.double_layer = Kernel::inv_four_pi * panel.area * d * dl;
+      const RadialSums sums = radial_kernel_sums(kernel, r2, w, 1.0);  // d is constant here
+      out.single_layer = Kernel::inv_four_pi * panel.area * sums.single;
+      out.double_layer = Kernel::inv_four_pi * panel.area * d * sums.double_layer;
       return out;
     }
   }
