@@ -35,10 +35,6 @@ void candidate_panels(const Panel& test, const ClusterTree& tree, double reach,
   std::sort(near.begin(), near.end());
 }
 
-}  // namespace
-
-namespace {
-
 /// What decides which entries of a row are kept: the cutoff gap g* and the reach of the
 /// candidate search around a panel's box.
 struct Cutoff {
@@ -107,10 +103,10 @@ SparseRowMatrix assemble_yukawa_near_field(const std::vector<Panel>& panels,
   // Two passes, so that the rows are written straight into the matrix and nothing else of
   // its size is ever held: first each row's room (yukawa_near_field_row_sizes), then the
   // entries.
-  const Eigen::VectorX<Eigen::Index> room =
-      row_sizes ? *row_sizes : yukawa_near_field_row_sizes(panels, tree, kappa, negligible);
+  Eigen::VectorX<Eigen::Index> counted;
+  if (!row_sizes) counted = yukawa_near_field_row_sizes(panels, tree, kappa, negligible);
+  const Eigen::VectorX<Eigen::Index>& room = row_sizes ? *row_sizes : counted;
   BEMSHAPE_ASSERT(room.size() == n, "exterior near field: one row size per panel");
-  const auto ran_out = [n] { return ran_out_of_memory(n); };
   std::atomic<bool> out_of_memory{false};
   if (room.sum() > std::numeric_limits<std::int32_t>::max())
     throw ResourceError("the exterior near field of " + std::to_string(n) + " faces needs up to " +
@@ -126,7 +122,7 @@ SparseRowMatrix assemble_yukawa_near_field(const std::vector<Panel>& panels,
   try {
     y.reserve(room);  // uncompressed: row i owns room(i) slots from outerIndexPtr()[i]
   } catch (const std::bad_alloc&) {
-    throw ran_out();
+    throw ran_out_of_memory(n);
   }
   std::int32_t* const columns = y.innerIndexPtr();
   double* const values = y.valuePtr();
@@ -178,7 +174,7 @@ SparseRowMatrix assemble_yukawa_near_field(const std::vector<Panel>& panels,
     }
   }
   throw_if_cancelled();
-  if (out_of_memory) throw ran_out();
+  if (out_of_memory) throw ran_out_of_memory(n);
   y.makeCompressed();  // in place: closes the gaps the coplanar zeros of Kκ left
   return y;
 }
