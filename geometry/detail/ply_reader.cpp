@@ -194,8 +194,10 @@ class BinaryValues {
     std::array<unsigned char, 8> bytes{};
     std::memcpy(bytes.data(), body_.data() + pos_, type.bytes);
     pos_ += type.bytes;
+    // Byte order: reverse the first type.bytes bytes. A loop rather than std::reverse, which
+    // GCC 12 with -march=native reports as writing past the array (-Wstringop-overflow).
     if (swap_)
-      std::reverse(bytes.begin(), bytes.begin() + static_cast<std::ptrdiff_t>(type.bytes));
+      for (std::size_t i = 0, j = type.bytes; i + 1 < j; ++i, --j) std::swap(bytes[i], bytes[j - 1]);
     value = decode(type, bytes.data());
     return true;
   }
