@@ -3,6 +3,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <sstream>
 #include <string>
 
@@ -47,9 +48,16 @@ std::uint64_t hmatrix_solver_memory_estimate(Eigen::Index faces, std::uint64_t e
   const double yukawa = 12.0 * double(exterior_entries) + 8.0 * n;
   const double preconditioner =
       double(ClusterBlockPreconditioner::bytes_for(faces, options.preconditioner_block));
+  // The coarse space: A_c and its LU for at most kMaxClusters clusters (A E's factors are
+  // small beside the preconditioner's).
+  const double clusters = options.coarse_cluster > 0
+                              ? std::min(double(ClusterCoarseSpace::kMaxClusters),
+                                         n / (0.5 * double(options.coarse_cluster)))
+                              : 0.0;
+  const double coarse = 16.0 * 4.0 * clusters * clusters;
   // Three Krylov bases (one per direction, solved in lockstep) and their work vectors.
   const double krylov = 3.0 * 8.0 * 2.0 * n * (options.restart + 6.0);
-  return static_cast<std::uint64_t>(laplace + yukawa + preconditioner + krylov);
+  return static_cast<std::uint64_t>(laplace + yukawa + preconditioner + coarse + krylov);
 }
 
 BoundarySolution solve_transmission_hmatrix(const geometry::SurfaceMesh& mesh,
@@ -92,6 +100,9 @@ BoundarySolution solve_transmission_hmatrix(const geometry::SurfaceMesh& mesh,
   report_progress(progress, "preconditioner", 0.0);
   const ClusterBlockPreconditioner preconditioner(tree, laplace, yukawa, half_mass,
                                                   options.preconditioner_block);
+  std::optional<ClusterCoarseSpace> coarse;
+  if (options.coarse_cluster > 0)
+    coarse.emplace(tree, laplace, yukawa, half_mass, options.coarse_cluster);
 
   BoundarySolution solution;
   solution.parameters = parameters;
@@ -114,7 +125,7 @@ BoundarySolution solve_transmission_hmatrix(const geometry::SurfaceMesh& mesh,
       {"interior near field", 8 * hstats.dense_entries},
       {"interior far field", hstats.low_rank_bytes},
       {"exterior near field", std::uint64_t(yukawa.nonZeros()) * 12},
-      {"preconditioner", preconditioner.bytes()}};
+      {"preconditioner", preconditioner.bytes() + (coarse ? coarse->bytes() : 0)}};
   for (const auto& [part, bytes] : solution.report.operator_parts)
     solution.report.operator_bytes += bytes;
   solution.report.compression = laplace.stats().compression();
@@ -139,7 +150,10 @@ BoundarySolution solve_transmission_hmatrix(const geometry::SurfaceMesh& mesh,
     y.bottomRows(n) = half_mass.asDiagonal() * x.topRows(n) + exterior;
   };
   const auto precondition = [&](const Eigen::MatrixXd& r, Eigen::MatrixXd& z) {
-    preconditioner.apply(r, z);
+    if (coarse)
+      coarse->apply_two_level(preconditioner, r, z);
+    else
+      preconditioner.apply(r, z);
   };
 
   const auto solve_start = Clock::now();

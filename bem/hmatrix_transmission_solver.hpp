@@ -18,6 +18,7 @@
 #include "bem/boundary_solution.hpp"
 #include "bem/hierarchical/block_partition.hpp"
 #include "bem/hierarchical/cluster_block_preconditioner.hpp"
+#include "bem/hierarchical/cluster_coarse_space.hpp"
 #include "bem/hierarchical/cluster_tree.hpp"
 #include "core/progress.hpp"
 #include "geometry/surface_mesh.hpp"
@@ -43,6 +44,9 @@ struct HMatrixSolverOptions {
   Eigen::Index leaf_size = ClusterTree::kDefaultLeafSize;
   /// Panels per preconditioner block.
   Eigen::Index preconditioner_block = ClusterBlockPreconditioner::kDefaultBlockSize;
+  /// Panels per cluster of the coarse space (bem/hierarchical/cluster_coarse_space.hpp);
+  /// 0 = block Jacobi alone.
+  Eigen::Index coarse_cluster = ClusterCoarseSpace::kDefaultClusterSize;
   int restart = 60;
   int max_iterations = 600;
   /// Upper bound on the memory the solver may use [bytes]; 0 = what the machine has.

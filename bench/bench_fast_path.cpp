@@ -3,7 +3,7 @@
 // solves with the dense and/or the hierarchical-matrix path and prints one JSON line per run:
 //
 //   bench_fast_path sphere|plate|box FACES [dense|hmatrix|both] [--tolerance T] [--aca E]
-//                   [--leaf L] [--eta H] [--single|--double] [--block B]
+//                   [--leaf L] [--eta H] [--single|--double] [--block B] [--coarse C]
 //   bench_fast_path entry-costs FACES     (where a row of the operators spends its time)
 //   bench_fast_path interior sphere|box FACES POINTS [--solve] [--order P] [--theta T]
 //                   [--leaf L] [--negligible D] [--reference M] [--sweep]      (evaluate_potential on a grid: treecode vs direct)
@@ -370,7 +370,7 @@ int main(int argc, char** argv) {
   if (argc >= 2 && std::string(argv[1]) == "interior") return interior(argc, argv);
   if (argc < 3) {
     std::fprintf(stderr, "usage: bench_fast_path sphere|plate|box FACES [dense|hmatrix|both] "
-                         "[--tolerance T] [--aca E] [--leaf L] [--eta H] [--single|--double] [--block B]\n");
+                         "[--tolerance T] [--aca E] [--leaf L] [--eta H] [--single|--double] [--block B] [--coarse C]\n");
     return 2;
   }
   const std::string shape = argv[1];
@@ -387,6 +387,7 @@ int main(int argc, char** argv) {
     else if (a == "--single") options.single_precision_factors = true;
     else if (a == "--double") options.single_precision_factors = false;
     else if (a == "--block" && i + 1 < argc) options.preconditioner_block = std::atol(argv[++i]);
+    else if (a == "--coarse" && i + 1 < argc) options.coarse_cluster = std::atol(argv[++i]);
     else {
       std::fprintf(stderr, "bench_fast_path: unknown argument %s\n", a.c_str());
       return 2;

@@ -245,4 +245,120 @@ std::vector<Eigen::MatrixXd> HierarchicalMatrix::diagonal_blocks(
   return out;
 }
 
+std::uint64_t HierarchicalMatrix::GroupedColumns::bytes() const {
+  std::uint64_t total = 8 * std::uint64_t(sums.size()) + 8 * group.size();
+  for (const Eigen::MatrixXd& r : reduced) total += 8 * std::uint64_t(r.size());
+  return total;
+}
+
+HierarchicalMatrix::GroupedColumns HierarchicalMatrix::group_columns(std::vector<Eigen::Index> group,
+                                                                     Eigen::Index groups) const {
+  BEMSHAPE_ASSERT(outputs_ == 1 && rows_ == cols_ && Eigen::Index(group.size()) == rows_,
+                  "grouped columns of a square operator, one group per element");
+  GroupedColumns out;
+  out.group = std::move(group);
+  out.groups = groups;
+  out.reduced.resize(blocks_.size());
+  const std::vector<Eigen::Index>& of = out.group;
+  const int g = densities_;
+  const int threads = omp_get_max_threads();
+  std::vector<Eigen::MatrixXd> partial(static_cast<size_t>(threads));
+#pragma omp parallel num_threads(threads)
+  {
+    Eigen::MatrixXd& mine = partial[static_cast<size_t>(omp_get_thread_num())];
+    mine = Eigen::MatrixXd::Zero(groups, g * groups);
+    Eigen::MatrixXd left;
+#pragma omp for schedule(dynamic, 16)
+    for (std::size_t k = 0; k < blocks_.size(); ++k) {
+      const Block& b = blocks_[k];
+      const Eigen::Index m = b.row_end - b.row_begin, n = b.col_end - b.col_begin;
+      // Groups are nondecreasing, so the block meets the consecutive groups r0 … and c0 ….
+      const Eigen::Index r0 = of[size_t(b.row_begin)], c0 = of[size_t(b.col_begin)];
+      const Eigen::Index nr = of[size_t(b.row_end - 1)] - r0 + 1;
+      const Eigen::Index nc = of[size_t(b.col_end - 1)] - c0 + 1;
+      Eigen::MatrixXd& reduced = out.reduced[k];
+      if (!b.is_low_rank) {
+        reduced = Eigen::MatrixXd::Zero(m, g * nc);  // D E
+        for (int d = 0; d < g; ++d)
+          for (Eigen::Index j = 0; j < n; ++j)
+            reduced.col(d * nc + of[size_t(b.col_begin + j)] - c0) += b.dense.col(d * n + j);
+        for (Eigen::Index i = 0; i < m; ++i)
+          for (int d = 0; d < g; ++d)
+            mine.row(of[size_t(b.row_begin + i)]).segment(d * groups + c0, nc) +=
+                reduced.row(i).segment(d * nc, nc);
+        continue;
+      }
+      const Eigen::Index rank = b.single_precision ? b.u_single.cols() : b.low_rank.rank();
+      reduced = Eigen::MatrixXd::Zero(g * nc, rank);  // EᵀV
+      for (int d = 0; d < g; ++d)
+        for (Eigen::Index j = 0; j < n; ++j) {
+          const Eigen::Index a = d * nc + of[size_t(b.col_begin + j)] - c0;
+          if (b.single_precision)
+            reduced.row(a) += b.v_single.row(d * n + j).cast<double>();
+          else
+            reduced.row(a) += b.low_rank.V.row(d * n + j);
+        }
+      left = Eigen::MatrixXd::Zero(nr, rank);  // EᵀU
+      for (Eigen::Index i = 0; i < m; ++i) {
+        const Eigen::Index a = of[size_t(b.row_begin + i)] - r0;
+        if (b.single_precision)
+          left.row(a) += b.u_single.row(i).cast<double>();
+        else
+          left.row(a) += b.low_rank.U.row(i);
+      }
+      for (int d = 0; d < g; ++d)
+        mine.block(r0, d * groups + c0, nr, nc).noalias() +=
+            left * reduced.middleRows(d * nc, nc).transpose();
+    }
+  }
+  out.sums = Eigen::MatrixXd::Zero(groups, g * groups);
+  for (const Eigen::MatrixXd& p : partial) out.sums += p;
+  return out;
+}
+
+void HierarchicalMatrix::multiply_add_grouped(const GroupedColumns& grouped,
+                                              const Eigen::Ref<const Eigen::MatrixXd>& x,
+                                              Eigen::Ref<Eigen::MatrixXd> y) const {
+  const Eigen::Index vectors = x.cols() / densities_, groups = grouped.groups;
+  BEMSHAPE_ASSERT(grouped.reduced.size() == blocks_.size() && x.rows() == groups &&
+                      x.cols() == vectors * densities_ && y.rows() == rows_ && y.cols() == vectors,
+                  "grouped H-matrix product: x must be groups × densities·k and y #rows × k");
+  const int threads = omp_get_max_threads();
+  std::vector<Eigen::MatrixXd> partial(static_cast<size_t>(threads));
+#pragma omp parallel num_threads(threads)
+  {
+    Eigen::MatrixXd& mine = partial[static_cast<size_t>(omp_get_thread_num())];
+    mine = Eigen::MatrixXd::Zero(rows_, y.cols());
+    Eigen::MatrixXd xs, product, chunk;
+#pragma omp for schedule(static, 1)
+    for (std::size_t k = 0; k < blocks_.size(); ++k) {
+      const Block& b = blocks_[k];
+      const Eigen::Index m = b.row_end - b.row_begin;
+      const Eigen::Index c0 = grouped.group[size_t(b.col_begin)];
+      const Eigen::Index nc = grouped.group[size_t(b.col_end - 1)] - c0 + 1;
+      xs.resize(densities_ * nc, vectors);
+      for (Eigen::Index j = 0; j < vectors; ++j)
+        for (int d = 0; d < densities_; ++d)
+          xs.col(j).segment(d * nc, nc) = x.col(j * densities_ + d).segment(c0, nc);
+      const Eigen::MatrixXd& reduced = grouped.reduced[k];
+      if (!b.is_low_rank) {
+        mine.middleRows(b.row_begin, m).noalias() += reduced * xs;
+        continue;
+      }
+      const Eigen::MatrixXd t = reduced.transpose() * xs;  // rank × k
+      if (!b.single_precision) {
+        mine.middleRows(b.row_begin, m).noalias() += b.low_rank.U * t;
+        continue;
+      }
+      constexpr Eigen::Index kRows = 128;  // U converted a few rows at a time, as in multiply_add
+      for (Eigen::Index i = 0; i < m; i += kRows) {
+        const Eigen::Index rows = std::min(kRows, m - i);
+        chunk = b.u_single.middleRows(i, rows).cast<double>();
+        mine.middleRows(b.row_begin + i, rows).noalias() += chunk * t;
+      }
+    }
+  }
+  for (const Eigen::MatrixXd& p : partial) y += p;
+}
+
 }  // namespace bemshape::bem
