@@ -93,9 +93,9 @@ BoundarySolveRun prepare_and_solve(const BoundarySolveSetup& given, StageTimes& 
     options.tolerance = setup.solver.tolerance;
     // ε two digits below the Krylov tolerance (bem/hmatrix_transmission_solver.hpp).
     options.aca_tolerance = 1e-2 * setup.solver.tolerance;
-    // Single-precision factors perturb a product by about 4e−7: fine for a residual of
+    // A single-precision H-matrix perturbs a product by about 4e−7: fine for a residual of
     // 1e−6, not for a tighter one.
-    options.single_precision_factors = setup.solver.tolerance >= 1e-6;
+    options.single_precision = setup.solver.tolerance >= 1e-6;
     options.max_memory_bytes = setup.max_memory_bytes;
     try {
       run.solution = bem::solve_transmission_hmatrix(run.solver_mesh, parameters, options, progress);

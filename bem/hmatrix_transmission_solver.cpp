@@ -41,9 +41,9 @@ std::uint64_t hmatrix_solver_memory_estimate(Eigen::Index faces, std::uint64_t e
   const double leaf = double(options.leaf_size);
   const double levels = std::max(1.0, std::log2(std::max(n / leaf, 1.0)));
   const double near_leaves = 30.0 * std::pow(std::max(options.eta, 1.0), -0.45);
-  const double factor_bytes = options.single_precision_factors ? 4.0 : 8.0;
-  const double laplace = n * (8.0 * 2.0 * near_leaves * leaf +
-                              factor_bytes * levels * 6.0 * 3.0 * kTypicalRank);
+  const double entry_bytes = options.single_precision ? 4.0 : 8.0;
+  const double laplace = n * entry_bytes * (2.0 * near_leaves * leaf +
+                                            levels * 6.0 * 3.0 * kTypicalRank);
   // Yukawa: 12 bytes per entry (value and 32-bit column), written in place.
   const double yukawa = 12.0 * double(exterior_entries) + 8.0 * n;
   const double preconditioner =
@@ -88,7 +88,8 @@ BoundarySolution solve_transmission_hmatrix(const geometry::SurfaceMesh& mesh,
   const GalerkinBlockGenerator<LaplaceKernel> generator(LaplaceKernel{}, panels, tree);
   const HierarchicalMatrix laplace(
       tree, generator,
-      {options.aca_tolerance, options.eta, options.single_precision_factors}, progress);
+      {options.aca_tolerance, options.eta, options.single_precision, options.single_precision},
+      progress);
   const double interior_seconds = seconds_since(interior_start);
   report_progress(progress, "assemble exterior", 0.0);
   const auto exterior_start = Clock::now();
@@ -120,11 +121,10 @@ BoundarySolution solve_transmission_hmatrix(const geometry::SurfaceMesh& mesh,
       {"exterior near field", exterior_seconds},
       {"preconditioner",
        solution.report.assembly_seconds - interior_seconds - exterior_seconds}};
-  // The exterior matrix holds a value and a 32-bit column index per stored entry.
   solution.report.operator_parts = {
-      {"interior near field", 8 * hstats.dense_entries},
+      {"interior near field", hstats.dense_bytes},
       {"interior far field", hstats.low_rank_bytes},
-      {"exterior near field", std::uint64_t(yukawa.nonZeros()) * 12},
+      {"exterior near field", stored_bytes(yukawa)},
       {"preconditioner", preconditioner.bytes() + (coarse ? coarse->bytes() : 0)}};
   for (const auto& [part, bytes] : solution.report.operator_parts)
     solution.report.operator_bytes += bytes;

@@ -9,9 +9,11 @@
 // cross approximation (bem/hierarchical/hierarchical_matrix.hpp), the Yukawa block row as a
 // sparse near-field matrix (bem/hierarchical/yukawa_near_field.hpp; the exponential decay
 // makes it exactly as sparse as the dense path's own dropping rule), and restarted GMRES
-// (bem/hierarchical/gmres.hpp) preconditioned by cluster blocks
-// (bem/hierarchical/cluster_block_preconditioner.hpp). Storage and work are O(N log N).
-// docs/benchmarks.md holds the measured times, memory and iteration counts.
+// (bem/hierarchical/gmres.hpp) with a two-level preconditioner: a coarse space of
+// cluster-wise constant densities (bem/hierarchical/cluster_coarse_space.hpp), then LU of
+// the system restricted to clusters (bem/hierarchical/cluster_block_preconditioner.hpp).
+// Storage and work are O(N log N). docs/benchmarks.md holds the measured times, memory and
+// iteration counts.
 
 #include <cstdint>
 
@@ -33,19 +35,18 @@ struct HMatrixSolverOptions {
   double aca_tolerance = 1e-8;
   /// η of the admissibility condition.
   double eta = kDefaultAdmissibility;
-  /// Low-rank factors in single precision (HierarchicalMatrixOptions): half the memory of
-  /// the far field. The rounding perturbs a product by about 4e−7 relative (measured,
-  /// tests/bem/hierarchical), which leaves the solution unchanged at the default tolerance
-  /// of 1e−6 (3920-face sphere: the same φ, q and thickness differences from the dense path
-  /// to 4 digits) but would dominate a tighter one: turn it off below 1e−6
-  /// (apps/boundary_solve does).
-  bool single_precision_factors = true;
+  /// The interior H-matrix in single precision, low-rank factors and dense near-field blocks
+  /// (HierarchicalMatrixOptions): half its memory. Rounding the factors perturbs a product
+  /// by about 4e−7 relative, the near field by less (measured, tests/bem/hierarchical),
+  /// which leaves the solution unchanged at the default tolerance of 1e−6 (docs/benchmarks.md)
+  /// but would dominate a tighter one: turn it off below 1e−6 (apps/boundary_solve does).
+  bool single_precision = true;
   /// Panels per leaf of the cluster tree.
   Eigen::Index leaf_size = ClusterTree::kDefaultLeafSize;
   /// Panels per preconditioner block.
   Eigen::Index preconditioner_block = ClusterBlockPreconditioner::kDefaultBlockSize;
   /// Panels per cluster of the coarse space (bem/hierarchical/cluster_coarse_space.hpp);
-  /// 0 = block Jacobi alone.
+  /// 0 = the blocks alone (block Jacobi: more iterations, growing with N).
   Eigen::Index coarse_cluster = ClusterCoarseSpace::kDefaultClusterSize;
   int restart = 60;
   int max_iterations = 600;

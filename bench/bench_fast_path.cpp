@@ -384,8 +384,8 @@ int main(int argc, char** argv) {
     else if (a == "--aca" && i + 1 < argc) options.aca_tolerance = std::atof(argv[++i]);
     else if (a == "--leaf" && i + 1 < argc) options.leaf_size = std::atol(argv[++i]);
     else if (a == "--eta" && i + 1 < argc) options.eta = std::atof(argv[++i]);
-    else if (a == "--single") options.single_precision_factors = true;
-    else if (a == "--double") options.single_precision_factors = false;
+    else if (a == "--single") options.single_precision = true;
+    else if (a == "--double") options.single_precision = false;
     else if (a == "--block" && i + 1 < argc) options.preconditioner_block = std::atol(argv[++i]);
     else if (a == "--coarse" && i + 1 < argc) options.coarse_cluster = std::atol(argv[++i]);
     else {
@@ -405,12 +405,12 @@ int main(int argc, char** argv) {
     const double cpu = cpu_seconds() - cpu_before;
     const Run& r = runs.back();
     std::printf("{\"shape\": \"%s\", \"faces\": %ld, \"solver\": \"%s\", \"h0\": %.6g, "
-                "\"eta\": %.3g, \"leaf\": %ld, \"single_factors\": %s, "
+                "\"eta\": %.3g, \"leaf\": %ld, \"single_precision\": %s, "
                 "\"times\": {\"mesh\": %.3f, \"assemble\": %.3f, \"solve\": %.3f, \"features\": %.3f}, "
                 "\"iterations\": %d, \"residual\": %.3g, \"peak_rss_mb\": %.1f, \"operator_mb\": %.1f, "
                 "\"compression\": %.4f, \"error\": %.3e, \"cpu_seconds\": %.1f",
                 shape.c_str(), long(p.mesh.num_faces()), s.c_str(), p.h0, options.eta,
-                long(options.leaf_size), options.single_precision_factors ? "true" : "false",
+                long(options.leaf_size), options.single_precision ? "true" : "false",
                 mesh_seconds, r.assemble,
                 r.solve, r.features, r.solution.report.iterations, r.solution.report.residual,
                 double(peak_resident_bytes()) / 1e6, double(r.solution.report.operator_bytes) / 1e6,

@@ -99,6 +99,11 @@ HierarchicalMatrix::HierarchicalMatrix(const ClusterTree& row_tree, const Cluste
       if (!stored) {
         b.dense.resize(o * m, g * n);
         generator.fill(b.row_begin, b.row_end, b.col_begin, b.col_end, b.dense);
+        if (options.single_precision_near_field) {
+          b.dense_single = b.dense.cast<float>();
+          b.dense = Eigen::MatrixXd();
+          b.single_precision = true;
+        }
       }
     } catch (const std::bad_alloc&) {
       out_of_memory = true;  // reported after the loop: an exception cannot leave it
@@ -131,7 +136,9 @@ HierarchicalMatrix::HierarchicalMatrix(const ClusterTree& row_tree, const Cluste
           std::max(stats_.max_rank, single ? b.u_single.cols() : b.low_rank.rank());
     } else {
       ++stats_.dense_blocks;
-      stats_.dense_entries += std::uint64_t(b.dense.size());
+      const auto entries = std::uint64_t(b.single_precision ? b.dense_single.size() : b.dense.size());
+      stats_.dense_entries += entries;
+      stats_.dense_bytes += (b.single_precision ? 4 : 8) * entries;
     }
   }
 }
@@ -156,6 +163,18 @@ void single_precision_product(const Eigen::MatrixXf& u, const Eigen::MatrixXf& v
     const Eigen::Index m = std::min(kRows, u.rows() - i);
     chunk = u.middleRows(i, m).cast<double>();
     product.middleRows(i, m).noalias() = chunk * t;
+  }
+}
+
+/// product = D x for a dense block stored in single precision, converted as above.
+void single_precision_dense_product(const Eigen::MatrixXf& d, const Eigen::MatrixXd& x,
+                                    Eigen::MatrixXd& product, Eigen::MatrixXd& chunk) {
+  constexpr Eigen::Index kRows = 128;
+  product.resize(d.rows(), x.cols());
+  for (Eigen::Index i = 0; i < d.rows(); i += kRows) {
+    const Eigen::Index m = std::min(kRows, d.rows() - i);
+    chunk = d.middleRows(i, m).cast<double>();
+    product.middleRows(i, m).noalias() = chunk * x;
   }
 }
 
@@ -193,6 +212,8 @@ void HierarchicalMatrix::multiply_add(const Eigen::Ref<const Eigen::MatrixXd>& x
         single_precision_product(b.u_single, b.v_single, xs, product, chunk);
       else if (b.is_low_rank)
         product.noalias() = b.low_rank.U * (b.low_rank.V.transpose() * xs);
+      else if (b.single_precision)
+        single_precision_dense_product(b.dense_single, xs, product, chunk);
       else
         product.noalias() = b.dense * xs;
       for (Eigen::Index j = 0; j < vectors; ++j)
@@ -237,6 +258,9 @@ std::vector<Eigen::MatrixXd> HierarchicalMatrix::diagonal_blocks(
         else if (b.is_low_rank)
           target.noalias() += b.low_rank.U.middleRows(u0, r1 - r0) *
                               b.low_rank.V.middleRows(v0, c1 - c0).transpose();
+        else if (b.single_precision)
+          target += b.dense_single.block(r0 - b.row_begin, d * n + (c0 - b.col_begin), r1 - r0, c1 - c0)
+                        .cast<double>();
         else
           target += b.dense.block(r0 - b.row_begin, d * n + (c0 - b.col_begin), r1 - r0, c1 - c0);
       }
@@ -278,10 +302,11 @@ HierarchicalMatrix::GroupedColumns HierarchicalMatrix::group_columns(std::vector
       const Eigen::Index nc = of[size_t(b.col_end - 1)] - c0 + 1;
       Eigen::MatrixXd& reduced = out.reduced[k];
       if (!b.is_low_rank) {
+        const Eigen::MatrixXd entries = dense_entries(b);
         reduced = Eigen::MatrixXd::Zero(m, g * nc);  // D E
         for (int d = 0; d < g; ++d)
           for (Eigen::Index j = 0; j < n; ++j)
-            reduced.col(d * nc + of[size_t(b.col_begin + j)] - c0) += b.dense.col(d * n + j);
+            reduced.col(d * nc + of[size_t(b.col_begin + j)] - c0) += entries.col(d * n + j);
         for (Eigen::Index i = 0; i < m; ++i)
           for (int d = 0; d < g; ++d)
             mine.row(of[size_t(b.row_begin + i)]).segment(d * groups + c0, nc) +=
@@ -319,8 +344,8 @@ HierarchicalMatrix::GroupedColumns HierarchicalMatrix::group_columns(std::vector
 void HierarchicalMatrix::multiply_add_grouped(const GroupedColumns& grouped,
                                               const Eigen::Ref<const Eigen::MatrixXd>& x,
                                               Eigen::Ref<Eigen::MatrixXd> y) const {
-  const Eigen::Index vectors = x.cols() / densities_, groups = grouped.groups;
-  BEMSHAPE_ASSERT(grouped.reduced.size() == blocks_.size() && x.rows() == groups &&
+  const Eigen::Index vectors = x.cols() / densities_;
+  BEMSHAPE_ASSERT(grouped.reduced.size() == blocks_.size() && x.rows() == grouped.groups &&
                       x.cols() == vectors * densities_ && y.rows() == rows_ && y.cols() == vectors,
                   "grouped H-matrix product: x must be groups × densities·k and y #rows × k");
   const int threads = omp_get_max_threads();

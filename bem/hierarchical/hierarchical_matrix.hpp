@@ -48,11 +48,16 @@ struct HierarchicalMatrixOptions {
   /// (measured on a sphere of 2000 panels at ε = 1e−8, tests/bem/hierarchical): above ε,
   /// below a Krylov tolerance of 1e−6. Products are still computed in double precision.
   bool single_precision_factors = false;
+  /// Store the dense (near-field) blocks in single precision too (half their memory).
+  /// Rounding an entry changes it by at most 6e−8 relative, less than the factors' effect;
+  /// products are computed in double precision.
+  bool single_precision_near_field = false;
 };
 
 /// Storage statistics.
 struct HierarchicalMatrixStats {
   std::uint64_t dense_entries = 0;     ///< entries of the dense (near-field) blocks
+  std::uint64_t dense_bytes = 0;       ///< their storage: 4 or 8 bytes per entry
   std::uint64_t low_rank_entries = 0;  ///< entries of the U and V factors
   std::uint64_t low_rank_bytes = 0;    ///< their storage: 4 or 8 bytes per entry
   std::uint64_t full_entries = 0;      ///< N·g·N, what a dense matrix would hold
@@ -61,7 +66,7 @@ struct HierarchicalMatrixStats {
   /// Thread-seconds spent computing the dense blocks (the near field) and the low-rank blocks
   /// (ACA and recompression: the far field), summed over threads [s].
   double dense_seconds = 0.0, low_rank_seconds = 0.0;
-  std::uint64_t bytes() const { return 8 * dense_entries + low_rank_bytes; }
+  std::uint64_t bytes() const { return dense_bytes + low_rank_bytes; }
   /// Stored entries over the dense matrix's entries.
   double compression() const {
     return full_entries ? double(dense_entries + low_rank_entries) / double(full_entries) : 0.0;
@@ -121,12 +126,19 @@ class HierarchicalMatrix {
  private:
   struct Block {
     Eigen::Index row_begin = 0, row_end = 0, col_begin = 0, col_end = 0;
-    Eigen::MatrixXd dense;  ///< o|τ| × g|σ|, empty for a low-rank block
+    Eigen::MatrixXd dense;  ///< o|τ| × g|σ|, empty for a low-rank block or in single precision
+    Eigen::MatrixXf dense_single;  ///< the same in single precision
     LowRankBlock low_rank;  ///< U: o|τ|×k, V: g|σ|×k (empty when stored in single precision)
     Eigen::MatrixXf u_single, v_single;  ///< the same factors in single precision
     bool is_low_rank = false;
-    bool single_precision = false;  ///< the factors are u_single, v_single (rank may be 0)
+    /// The block is stored in single precision: u_single, v_single (rank may be 0) or
+    /// dense_single.
+    bool single_precision = false;
   };
+  /// The entries of a dense block in double precision, whichever way it is stored.
+  static Eigen::MatrixXd dense_entries(const Block& b) {
+    return b.single_precision ? Eigen::MatrixXd(b.dense_single.cast<double>()) : b.dense;
+  }
   /// The block's column range of the k vectors of x: g|σ| × k, row d·|σ| + c, column j.
   Eigen::MatrixXd gather(const Eigen::Ref<const Eigen::MatrixXd>& x, const Block& b) const;
 

@@ -46,7 +46,15 @@ Eigen::VectorX<Eigen::Index> yukawa_near_field_row_sizes(const std::vector<Panel
 /// dense path's threshold, larger values (the H-matrix solver passes 1e−2·ε) trade entries
 /// below the compression tolerance for fewer nonzeros. If the counted entries do not fit in
 /// the memory the machine has left (core/memory.hpp), ResourceError before any is stored.
+/// The result is uncompressed (Eigen's term): each row owns the room counted for it, and
+/// nonZeros() counts the entries actually stored; see stored_bytes.
 /// `row_sizes`: yukawa_near_field_row_sizes of the same arguments, if already counted.
+/// Bytes a matrix from assemble_yukawa_near_field holds: a value and a 32-bit column per
+/// slot (used or not) and the row offsets.
+inline std::uint64_t stored_bytes(const SparseRowMatrix& y) {
+  return 12ull * std::uint64_t(y.data().allocatedSize()) + 8ull * std::uint64_t(y.outerSize());
+}
+
 SparseRowMatrix assemble_yukawa_near_field(
     const std::vector<Panel>& panels, const ClusterTree& tree, double kappa,
     double negligible = YukawaAttenuation::negligible, const ProgressCallback& progress = {},

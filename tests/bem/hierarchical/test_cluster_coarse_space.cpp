@@ -34,7 +34,7 @@ struct System {
         panels(bem::make_panels(mesh)),
         tree(panels, 16),
         laplace(tree, bem::GalerkinBlockGenerator<bem::LaplaceKernel>(bem::LaplaceKernel{}, panels, tree),
-                {1e-8, 2.0, single}),
+                {1e-8, 2.0, single, single}),
         yukawa(bem::assemble_yukawa_near_field(
             panels, tree, bem::TransmissionParameters::from_shape(0.3, 0.2).kappa)) {
     half_mass.resize(mesh.num_faces());

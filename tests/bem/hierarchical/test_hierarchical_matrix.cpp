@@ -19,12 +19,12 @@ namespace {
 /// statistics.
 bem::HierarchicalMatrixStats check_against_dense(const geometry::SurfaceMesh& mesh,
                                                  double epsilon, bool single = false,
-                                                 double tolerance = 0.0) {
+                                                 double tolerance = 0.0, bool single_near = false) {
   if (tolerance == 0.0) tolerance = 10.0 * epsilon;
   const auto panels = bem::make_panels(mesh);
   const bem::ClusterTree tree(panels, 16);
   const bem::GalerkinBlockGenerator<bem::LaplaceKernel> generator(bem::LaplaceKernel{}, panels, tree);
-  const bem::HierarchicalMatrix h(tree, generator, {epsilon, 1.0, single});
+  const bem::HierarchicalMatrix h(tree, generator, {epsilon, 1.0, single, single_near});
   const Eigen::Index n = mesh.num_faces();
   Eigen::MatrixXd dense(n, 2 * n);
   generator.fill(0, n, 0, n, dense);
@@ -81,6 +81,14 @@ TEST_CASE("H-matrix with single-precision factors: half the far-field bytes, err
   CHECK(full.low_rank_bytes == 8 * full.low_rank_entries);
   CHECK(single.low_rank_bytes == 4 * single.low_rank_entries);
   CHECK(single.bytes() < full.bytes());
+
+  // The near field in single precision as well: each entry within 6e−8 relative, so the
+  // product's error stays at the factors' level; the near-field bytes halve.
+  const bem::HierarchicalMatrixStats both = check_against_dense(sphere, 1e-8, true, 1e-6, true);
+  CHECK(both.dense_entries == full.dense_entries);
+  CHECK(full.dense_bytes == 8 * full.dense_entries);
+  CHECK(both.dense_bytes == 4 * both.dense_entries);
+  CHECK(both.low_rank_bytes == single.low_rank_bytes);
 }
 
 namespace {
