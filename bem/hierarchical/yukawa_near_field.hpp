@@ -43,7 +43,7 @@ Eigen::VectorX<Eigen::Index> yukawa_near_field_row_sizes(const std::vector<Panel
 /// Assembles Y for the panels in tree order (parallel over rows; each row is computed the
 /// same way whatever the thread count). Entries between panels whose gap
 /// |c_j − c_k| − r_j − r_k gives e^{−κ·gap} < `negligible` are dropped; the default is the
-/// dense path's threshold, larger values (the H-matrix solver passes 1e−2·ε) trade entries
+/// dense path's threshold, larger values (the H-matrix solver passes ε) trade entries
 /// below the compression tolerance for fewer nonzeros. If the counted entries do not fit in
 /// the memory the machine has left (core/memory.hpp), ResourceError before any is stored.
 /// The result is uncompressed (Eigen's term): each row owns the room counted for it, and
