@@ -195,7 +195,7 @@ TEST_CASE("max-memory with units: too small is refused naming the option, bad un
 }
 
 TEST_CASE("hmatrix --max-memory: the exterior matrix's size follows the element size in kappa") {
-  // h0 = 3 on a ball of radius 0.5: κ = 2/(a·h0) = 3.3 and the exterior cutoff 23/κ = 7 is
+  // h0 = 3 on a ball of radius 0.5: κ = 2/(a·h0) = 3.3 and the exterior cutoff 18.4/κ = 5.5 is
   // wider than the ball, so every pair of the N ≈ 10⁴ solver faces at --max-edge 0.03 is
   // kept: 2N entries per exterior row, 12·2N² bytes, several GB. An estimate at the default
   // element size's ~1300 entries per row would put the whole solver below 1 GB and let it
