@@ -74,8 +74,9 @@ BoundarySolution solve_transmission_hmatrix(const geometry::SurfaceMesh& mesh,
   // 1e−8) are dropped: each is below ε times an unattenuated entry at that distance, the
   // relative accuracy the compression of the Laplace part works to. (The dense path keeps
   // entries down to 1e−10, 23/κ; dropping at ε instead stores a third fewer entries and
-  // leaves the solution unchanged to three digits, docs/benchmarks.md.) Their exact count, before anything is assembled, goes into the memory guard: it varies
-  // with κ·h and with the walls' thickness far more than the Laplace part does.
+  // leaves the solution unchanged to three digits, docs/benchmarks.md.) Their exact count,
+  // before anything is assembled, goes into the memory guard: it varies with κ·h and with
+  // the walls' thickness far more than the Laplace part does.
   const double negligible = options.aca_tolerance;
   const auto count_start = Clock::now();
   const Eigen::VectorX<Eigen::Index> exterior_rows =

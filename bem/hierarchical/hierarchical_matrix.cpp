@@ -145,37 +145,33 @@ HierarchicalMatrix::HierarchicalMatrix(const ClusterTree& row_tree, const Cluste
 
 namespace {
 
-/// product = U (Vᵀ x) for factors stored in single precision, in double arithmetic. The
-/// factors are converted a few rows at a time into `chunk` (it stays in cache), so a product
-/// reads 4 bytes per factor entry and writes no double copy of the factors.
-void single_precision_product(const Eigen::MatrixXf& u, const Eigen::MatrixXf& v,
-                              const Eigen::MatrixXd& x, Eigen::MatrixXd& product,
-                              Eigen::MatrixXd& chunk) {
-  constexpr Eigen::Index kRows = 128;
-  Eigen::MatrixXd t = Eigen::MatrixXd::Zero(v.cols(), x.cols());
-  for (Eigen::Index i = 0; i < v.rows(); i += kRows) {
-    const Eigen::Index m = std::min(kRows, v.rows() - i);
-    chunk = v.middleRows(i, m).cast<double>();
-    t.noalias() += chunk.transpose() * x.middleRows(i, m);
-  }
-  product.resize(u.rows(), x.cols());
-  for (Eigen::Index i = 0; i < u.rows(); i += kRows) {
-    const Eigen::Index m = std::min(kRows, u.rows() - i);
-    chunk = u.middleRows(i, m).cast<double>();
-    product.middleRows(i, m).noalias() = chunk * t;
+/// Rows of a single-precision matrix converted to double at a time: the chunk stays in cache.
+constexpr Eigen::Index kConvertedRows = 128;
+
+/// out += A x for A stored in single precision, in double arithmetic. A is converted
+/// kConvertedRows rows at a time into `chunk`, so the product reads 4 bytes per entry of A
+/// and writes no double copy of it.
+void add_single_precision_product(const Eigen::MatrixXf& a, const Eigen::MatrixXd& x,
+                                  Eigen::Ref<Eigen::MatrixXd> out, Eigen::MatrixXd& chunk) {
+  for (Eigen::Index i = 0; i < a.rows(); i += kConvertedRows) {
+    const Eigen::Index m = std::min(kConvertedRows, a.rows() - i);
+    chunk = a.middleRows(i, m).cast<double>();
+    out.middleRows(i, m).noalias() += chunk * x;
   }
 }
 
-/// product = D x for a dense block stored in single precision, converted as above.
-void single_precision_dense_product(const Eigen::MatrixXf& d, const Eigen::MatrixXd& x,
-                                    Eigen::MatrixXd& product, Eigen::MatrixXd& chunk) {
-  constexpr Eigen::Index kRows = 128;
-  product.resize(d.rows(), x.cols());
-  for (Eigen::Index i = 0; i < d.rows(); i += kRows) {
-    const Eigen::Index m = std::min(kRows, d.rows() - i);
-    chunk = d.middleRows(i, m).cast<double>();
-    product.middleRows(i, m).noalias() = chunk * x;
+/// product = U (Vᵀ x) for factors stored in single precision, converted as above.
+void single_precision_product(const Eigen::MatrixXf& u, const Eigen::MatrixXf& v,
+                              const Eigen::MatrixXd& x, Eigen::MatrixXd& product,
+                              Eigen::MatrixXd& chunk) {
+  Eigen::MatrixXd t = Eigen::MatrixXd::Zero(v.cols(), x.cols());
+  for (Eigen::Index i = 0; i < v.rows(); i += kConvertedRows) {
+    const Eigen::Index m = std::min(kConvertedRows, v.rows() - i);
+    chunk = v.middleRows(i, m).cast<double>();
+    t.noalias() += chunk.transpose() * x.middleRows(i, m);
   }
+  product.setZero(u.rows(), x.cols());
+  add_single_precision_product(u, t, product, chunk);
 }
 
 }  // namespace
@@ -212,8 +208,10 @@ void HierarchicalMatrix::multiply_add(const Eigen::Ref<const Eigen::MatrixXd>& x
         single_precision_product(b.u_single, b.v_single, xs, product, chunk);
       else if (b.is_low_rank)
         product.noalias() = b.low_rank.U * (b.low_rank.V.transpose() * xs);
-      else if (b.single_precision)
-        single_precision_dense_product(b.dense_single, xs, product, chunk);
+      else if (b.single_precision) {
+        product.setZero(b.dense_single.rows(), xs.cols());
+        add_single_precision_product(b.dense_single, xs, product, chunk);
+      }
       else
         product.noalias() = b.dense * xs;
       for (Eigen::Index j = 0; j < vectors; ++j)
@@ -375,12 +373,7 @@ void HierarchicalMatrix::multiply_add_grouped(const GroupedColumns& grouped,
         mine.middleRows(b.row_begin, m).noalias() += b.low_rank.U * t;
         continue;
       }
-      constexpr Eigen::Index kRows = 128;  // U converted a few rows at a time, as in multiply_add
-      for (Eigen::Index i = 0; i < m; i += kRows) {
-        const Eigen::Index rows = std::min(kRows, m - i);
-        chunk = b.u_single.middleRows(i, rows).cast<double>();
-        mine.middleRows(b.row_begin + i, rows).noalias() += chunk * t;
-      }
+      add_single_precision_product(b.u_single, t, mine.middleRows(b.row_begin, m), chunk);
     }
   }
   for (const Eigen::MatrixXd& p : partial) y += p;
