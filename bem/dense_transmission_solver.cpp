@@ -67,12 +67,15 @@ BoundarySolution solve_transmission_dense(const geometry::SurfaceMesh& mesh,
     // ½·M with M the P0 mass matrix diag(|T_j|).
     const double half_mass = 0.5 * mesh.face_areas()(j);
     Eigen::RowVector3d yukawa_of_jump = Eigen::RowVector3d::Zero();
+    thread_local Eigen::MatrixXd laplace_v, laplace_k;
+    laplace_v.resize(1, n);
+    laplace_k.resize(1, n);
+    laplace.fill_range(j, j + 1, 0, n, laplace_v, laplace_k);
     for (Eigen::Index k = 0; k < n; ++k) {
-      const auto l = laplace.entry(j, k);
       const auto y = yukawa.entry(j, k);
       const double half = j == k ? half_mass : 0.0;
-      a(j, k) = -(half + l.double_layer);
-      a(j, n + k) = l.single_layer;
+      a(j, k) = -(half + laplace_k(0, k));
+      a(j, n + k) = laplace_v(0, k);
       a(n + j, k) = half - y.double_layer;
       a(n + j, n + k) = y.single_layer;
       yukawa_of_jump += y.single_layer * jump.row(k);

@@ -25,12 +25,13 @@
 #include <array>
 #include <cmath>
 #include <optional>
-#include <span>
 #include <vector>
 
 #include <Eigen/Core>
 
+#include "bem/far_field_lanes.hpp"
 #include "bem/panel.hpp"
+#include "bem/panel_arrays.hpp"
 #include "bem/panel_integrals.hpp"
 #include "bem/radial_values.hpp"
 #include "bem/sauter_schwab_rules.hpp"
@@ -177,7 +178,9 @@ template <class Kernel>
 class GalerkinOperators {
  public:
   GalerkinOperators(Kernel kernel, const std::vector<Panel>& panels)
-      : kernel_(kernel), panels_(&panels) {}
+      : kernel_(kernel),
+        panels_(&panels),
+        arrays_(Kernel::has_exponential_decay ? PanelArrays({}) : PanelArrays(panels)) {}
 
   struct Entry {
     double single_layer = 0.0;  ///< V[j, k]
@@ -307,16 +310,57 @@ class GalerkinOperators {
     return {test.area * p.single_layer, test.area * p.double_layer};
   }
 
-  /// Fills V(r, c) and K(r, c) for rows[r], cols[c] (both pre-sized |rows|×|cols|).
-  void fill(std::span<const Eigen::Index> rows, std::span<const Eigen::Index> cols,
-            Eigen::Ref<Eigen::MatrixXd> single_layer, Eigen::Ref<Eigen::MatrixXd> double_layer) const {
-    for (size_t c = 0; c < cols.size(); ++c) {
-      for (size_t r = 0; r < rows.size(); ++r) {
-        const Entry e = entry(rows[r], cols[c]);
-        single_layer(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) = e.single_layer;
-        double_layer(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) = e.double_layer;
+  /// V and K of test panels row_begin … row_end − 1 and trial panels col_begin … col_end − 1:
+  /// single_layer(r, c) = V[row_begin + r, col_begin + c], double_layer(r, c) likewise (both
+  /// pre-sized). The entries of `entry`; for Laplace the far-field pairs are computed
+  /// kFarFieldLanes at a time (bem/far_field_lanes.hpp), along the row when the range has
+  /// one row and along each column otherwise.
+  void fill_range(Eigen::Index row_begin, Eigen::Index row_end, Eigen::Index col_begin,
+                  Eigen::Index col_end, Eigen::Ref<Eigen::MatrixXd> single_layer,
+                  Eigen::Ref<Eigen::MatrixXd> double_layer) const {
+    const Eigen::Index m = row_end - row_begin, n = col_end - col_begin;
+    const auto one = [&](Eigen::Index r, Eigen::Index c) {
+      const Entry e = entry(row_begin + r, col_begin + c);
+      single_layer(r, c) = e.single_layer;
+      double_layer(r, c) = e.double_layer;
+    };
+    if constexpr (!Kernel::has_exponential_decay) {
+      constexpr Eigen::Index lanes = kFarFieldLanes;
+      constexpr double far_ratio = OuterRuleThresholds::far_ratio;
+      FarFieldEntries e;
+      if (m == 1) {
+        const PanelLanes test = PanelLanes::repeated(arrays_, row_begin);
+        Eigen::Index c = 0;
+        for (; c + lanes <= n; c += lanes) {
+          if (laplace_far_field_lanes(test, PanelLanes::consecutive(arrays_, col_begin + c),
+                                      far_ratio, e)) {
+            single_layer.block(0, c, 1, lanes) = e.single_layer.matrix().transpose();
+            double_layer.block(0, c, 1, lanes) = e.double_layer.matrix().transpose();
+          } else {
+            for (Eigen::Index l = 0; l < lanes; ++l) one(0, c + l);
+          }
+        }
+        for (; c < n; ++c) one(0, c);
+        return;
       }
+      for (Eigen::Index c = 0; c < n; ++c) {
+        const PanelLanes trial = PanelLanes::repeated(arrays_, col_begin + c);
+        Eigen::Index r = 0;
+        for (; r + lanes <= m; r += lanes) {
+          if (laplace_far_field_lanes(PanelLanes::consecutive(arrays_, row_begin + r), trial,
+                                      far_ratio, e)) {
+            single_layer.block(r, c, lanes, 1) = e.single_layer.matrix();
+            double_layer.block(r, c, lanes, 1) = e.double_layer.matrix();
+          } else {
+            for (Eigen::Index l = 0; l < lanes; ++l) one(r + l, c);
+          }
+        }
+        for (; r < m; ++r) one(r, c);
+      }
+      return;
     }
+    for (Eigen::Index c = 0; c < n; ++c)
+      for (Eigen::Index r = 0; r < m; ++r) one(r, c);
   }
 
   Eigen::Index size() const { return static_cast<Eigen::Index>(panels_->size()); }
@@ -325,6 +369,7 @@ class GalerkinOperators {
  private:
   Kernel kernel_;
   const std::vector<Panel>* panels_;
+  PanelArrays arrays_;  ///< *panels_ as arrays, for fill_range (empty for Yukawa)
 };
 
 }  // namespace bemshape::bem

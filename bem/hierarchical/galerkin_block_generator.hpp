@@ -6,7 +6,9 @@
 //   out(r, c) = −K[τ_r, σ_c],   out(r, |σ| + c) = V[τ_r, σ_c]
 //
 // with τ_r, σ_c the mesh faces at tree positions row_begin + r, col_begin + c. The entries
-// are the dense path's, computed by the same code.
+// are the dense path's, computed by the same code (GalerkinOperators::fill_range) on a copy
+// of the panels in tree order, so that the rows and columns of a block are consecutive
+// panels and its far-field pairs load straight into SIMD lanes.
 
 #include <vector>
 
@@ -20,23 +22,25 @@ template <class Kernel>
 class GalerkinBlockGenerator final : public OperatorBlockGenerator {
  public:
   GalerkinBlockGenerator(Kernel kernel, const std::vector<Panel>& panels, const ClusterTree& tree)
-      : operators_(kernel, panels), perm_(&tree.permutation()) {}
+      : tree_ordered_(tree_order(panels, tree)), operators_(kernel, tree_ordered_) {}
   int densities() const override { return 2; }
   void fill(Eigen::Index row_begin, Eigen::Index row_end, Eigen::Index col_begin,
             Eigen::Index col_end, Eigen::Ref<Eigen::MatrixXd> out) const override {
     const Eigen::Index n = col_end - col_begin;
-    const auto& perm = *perm_;
-    for (Eigen::Index c = 0; c < n; ++c)
-      for (Eigen::Index r = 0; r < row_end - row_begin; ++r) {
-        const auto e = operators_.entry(perm[size_t(row_begin + r)], perm[size_t(col_begin + c)]);
-        out(r, c) = -e.double_layer;
-        out(r, n + c) = e.single_layer;
-      }
+    operators_.fill_range(row_begin, row_end, col_begin, col_end, out.rightCols(n), out.leftCols(n));
+    out.leftCols(n) *= -1.0;
   }
 
  private:
+  static std::vector<Panel> tree_order(const std::vector<Panel>& panels, const ClusterTree& tree) {
+    std::vector<Panel> ordered;
+    ordered.reserve(panels.size());
+    for (const Eigen::Index face : tree.permutation()) ordered.push_back(panels[static_cast<std::size_t>(face)]);
+    return ordered;
+  }
+
+  std::vector<Panel> tree_ordered_;  ///< panels[permutation[i]] at i
   GalerkinOperators<Kernel> operators_;
-  const std::vector<Eigen::Index>* perm_;
 };
 
 }  // namespace bemshape::bem

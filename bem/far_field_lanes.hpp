@@ -1,0 +1,131 @@
+#pragma once
+// Far-field Galerkin entries of the Laplace operators for kFarFieldLanes panel pairs at once.
+//
+// For a pair (T_j, T_k) whose centroids are at least OuterRuleThresholds::far_ratio of the
+// larger diameter apart, GalerkinOperators::entry takes the test centroid x = c_j as the
+// outer rule and a Gauss rule (w_q, ξ_q, η_q) on T_k chosen by |x − c_k|/diam T_k
+// (bem/panel_integrals.hpp):
+//
+//   V[j, k] = |T_j||T_k|/(4π) Σ_q w_q / r_q,
+//   K[j, k] = |T_j||T_k|/(4π) d Σ_q w_q / r_q³,
+//
+// r_q = |x − a_k − ξ_q e1_k − η_q e2_k|, d = (x − a_k)·n_k. Those Gauss rules have 3 to 16
+// points, and one pair at a time spends its time on the latency of one square root after
+// another. Here the same sums run across kFarFieldLanes pairs in SIMD registers: the pairs of
+// one row of an operator block (one test panel, consecutive trial panels) or of one column.
+// The lanes must agree on the rule; `laplace_far_field_lanes` says when they do not, and the
+// caller then takes those pairs one at a time. Same rules, same formulas: the results differ
+// from `entry` only by rounding.
+
+#include <array>
+
+#include <Eigen/Core>
+
+#include "bem/laplace_kernel.hpp"
+#include "bem/panel_arrays.hpp"
+#include "bem/panel_integrals.hpp"
+
+namespace bemshape::bem {
+
+/// Pairs per SIMD pass: 8 doubles fill one AVX-512 register or two AVX2 ones.
+inline constexpr int kFarFieldLanes = 8;
+using FarFieldLanes = Eigen::Array<double, kFarFieldLanes, 1>;
+
+/// The geometry of kFarFieldLanes panels as lanes: consecutive panels of a PanelArrays, or one
+/// panel in every lane.
+struct PanelLanes {
+  std::array<FarFieldLanes, 3> centroid, corner, edge1, edge2, normal;
+  FarFieldLanes area, diameter;
+
+  /// Panels first … first + kFarFieldLanes − 1.
+  static PanelLanes consecutive(const PanelArrays& arrays, Eigen::Index first) {
+    PanelLanes p;
+    const auto lanes = [&](PanelArrays::Field f) {
+      return FarFieldLanes(Eigen::Map<const FarFieldLanes>(arrays.column(f) + first));
+    };
+    for (int i = 0; i < 3; ++i) {
+      const auto s = static_cast<std::size_t>(i);
+      p.centroid[s] = lanes(PanelArrays::Field(PanelArrays::centroid_x + i));
+      p.corner[s] = lanes(PanelArrays::Field(PanelArrays::corner_x + i));
+      p.edge1[s] = lanes(PanelArrays::Field(PanelArrays::edge1_x + i));
+      p.edge2[s] = lanes(PanelArrays::Field(PanelArrays::edge2_x + i));
+      p.normal[s] = lanes(PanelArrays::Field(PanelArrays::normal_x + i));
+    }
+    p.area = lanes(PanelArrays::area);
+    p.diameter = lanes(PanelArrays::diameter);
+    return p;
+  }
+
+  /// Panel i in every lane.
+  static PanelLanes repeated(const PanelArrays& arrays, Eigen::Index i) {
+    PanelLanes p;
+    const auto lanes = [&](PanelArrays::Field f) {
+      return FarFieldLanes(FarFieldLanes::Constant(arrays.column(f)[i]));
+    };
+    for (int c = 0; c < 3; ++c) {
+      const auto s = static_cast<std::size_t>(c);
+      p.centroid[s] = lanes(PanelArrays::Field(PanelArrays::centroid_x + c));
+      p.corner[s] = lanes(PanelArrays::Field(PanelArrays::corner_x + c));
+      p.edge1[s] = lanes(PanelArrays::Field(PanelArrays::edge1_x + c));
+      p.edge2[s] = lanes(PanelArrays::Field(PanelArrays::edge2_x + c));
+      p.normal[s] = lanes(PanelArrays::Field(PanelArrays::normal_x + c));
+    }
+    p.area = lanes(PanelArrays::area);
+    p.diameter = lanes(PanelArrays::diameter);
+    return p;
+  }
+};
+
+/// V and K of the pairs (test lane l, trial lane l).
+struct FarFieldEntries {
+  FarFieldLanes single_layer, double_layer;
+};
+
+/// The Laplace far-field entries of the kFarFieldLanes pairs, or false if some pair is closer
+/// than `far_ratio` times the larger diameter (it needs GalerkinOperators::entry's outer
+/// rules; the caller passes OuterRuleThresholds::far_ratio) or the pairs need different
+/// Gauss rules. The rule is the one integrate_panel selects (far_field_rules(),
+/// κ·diameter = 0), tested on squared distances as select_far_field_rule_squared does.
+inline bool laplace_far_field_lanes(const PanelLanes& test, const PanelLanes& trial,
+                                    double far_ratio, FarFieldEntries& out) {
+  const FarFieldLanes dx = test.centroid[0] - trial.centroid[0];
+  const FarFieldLanes dy = test.centroid[1] - trial.centroid[1];
+  const FarFieldLanes dz = test.centroid[2] - trial.centroid[2];
+  const FarFieldLanes distance2 = dx.square() + dy.square() + dz.square();
+  if (!(distance2 >= far_ratio * far_ratio * test.diameter.max(trial.diameter).square()).all()) return false;
+  // The first row of the table that every lane satisfies must be the first that any lane does.
+  const FarFieldLanes trial_diameter2 = trial.diameter.square();
+  const TriangleRule* rule = nullptr;
+  for (const FarFieldRule& row : far_field_rules()) {
+    const auto qualifies = distance2 >= row.min_ratio_squared() * trial_diameter2;
+    if (qualifies.all()) {
+      rule = row.rule;
+      break;
+    }
+    if (qualifies.any()) return false;
+  }
+  if (rule == nullptr) return false;
+
+  // x − a_k and d = (x − a_k)·n_k per lane.
+  const FarFieldLanes ox = test.centroid[0] - trial.corner[0];
+  const FarFieldLanes oy = test.centroid[1] - trial.corner[1];
+  const FarFieldLanes oz = test.centroid[2] - trial.corner[2];
+  const FarFieldLanes d = ox * trial.normal[0] + oy * trial.normal[1] + oz * trial.normal[2];
+  FarFieldLanes sum1 = FarFieldLanes::Zero(), sum3 = FarFieldLanes::Zero();
+  for (int q = 0; q < rule->size(); ++q) {
+    const auto k = static_cast<std::size_t>(q);
+    const double xi = rule->xi[k], eta = rule->eta[k], w = rule->weight[k];
+    const FarFieldLanes rx = ox - xi * trial.edge1[0] - eta * trial.edge2[0];
+    const FarFieldLanes ry = oy - xi * trial.edge1[1] - eta * trial.edge2[1];
+    const FarFieldLanes rz = oz - xi * trial.edge1[2] - eta * trial.edge2[2];
+    const FarFieldLanes inverse_r = (rx.square() + ry.square() + rz.square()).rsqrt();
+    sum1 += w * inverse_r;
+    sum3 += w * inverse_r.cube();
+  }
+  const FarFieldLanes scale = LaplaceKernel::inv_four_pi * test.area * trial.area;
+  out.single_layer = scale * sum1;
+  out.double_layer = scale * d * sum3;
+  return true;
+}
+
+}  // namespace bemshape::bem
