@@ -52,8 +52,10 @@ BoundarySolution solve_transmission_dense(const geometry::SurfaceMesh& mesh,
 
   const auto start = Clock::now();
   const std::vector<Panel> panels = make_panels(mesh);
-  const GalerkinOperators<LaplaceKernel> laplace(LaplaceKernel{}, panels);
-  const GalerkinOperators<YukawaKernel> yukawa(YukawaKernel{parameters.kappa}, panels);
+  GalerkinOperators<LaplaceKernel> laplace(LaplaceKernel{}, panels);
+  GalerkinOperators<YukawaKernel> yukawa(YukawaKernel{parameters.kappa}, panels);
+  laplace.tabulate_touching_pairs();
+  yukawa.tabulate_touching_pairs();
   // Jump of the normal derivative, g_i = n_i/ã, per face (P0).
   const Eigen::MatrixX3d jump = mesh.face_normals() / parameters.a_tilde;
 

@@ -69,18 +69,29 @@ inline const TriangleRule* select_far_field_rule_squared(double distance_squared
 struct RadialSums {
   double single = 0.0, double_layer = 0.0;
 };
-template <class Kernel, class Array, class Weights, class Factor>
-RadialSums radial_kernel_sums(const Kernel& kernel, const Array& r2, const Weights& w,
-                              const Factor& f) {
+/// The terms of those sums per point, E(r)/r and E(r)(1 + κr)/r³, for callers that need
+/// more than one weighted sum of them.
+template <class Kernel, class Array>
+void radial_kernel_terms(const Kernel& kernel, const Array& r2, Array& single,
+                         Array& double_layer) {
   const Array inv_r = r2.rsqrt();
   if constexpr (Kernel::has_exponential_decay) {
     const double kappa = kernel.kappa();
     const Array r = r2 * inv_r;
-    const Array we = w * (-kappa * r).exp();
-    return {(we * inv_r).sum(), (we * f * (1.0 + kappa * r) * inv_r.cube()).sum()};
+    const Array e = (-kappa * r).exp();
+    single = e * inv_r;
+    double_layer = e * (1.0 + kappa * r) * inv_r.cube();
   } else {
-    return {(w * inv_r).sum(), (w * f * inv_r.cube()).sum()};
+    single = inv_r;
+    double_layer = inv_r.cube();
   }
+}
+template <class Kernel, class Array, class Weights, class Factor>
+RadialSums radial_kernel_sums(const Kernel& kernel, const Array& r2, const Weights& w,
+                              const Factor& f) {
+  Array single, double_layer;
+  radial_kernel_terms(kernel, r2, single, double_layer);
+  return {(w * single).sum(), (w * f * double_layer).sum()};
 }
 
 /// Single and double layer (and gradients) of `panel` at x by the triangle rule `rule`.

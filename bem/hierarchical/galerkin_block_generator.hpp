@@ -22,7 +22,9 @@ template <class Kernel>
 class GalerkinBlockGenerator final : public OperatorBlockGenerator {
  public:
   GalerkinBlockGenerator(Kernel kernel, const std::vector<Panel>& panels, const ClusterTree& tree)
-      : tree_ordered_(tree_order(panels, tree)), operators_(kernel, tree_ordered_) {}
+      : tree_ordered_(tree_order(panels, tree)), operators_(kernel, tree_ordered_, &tree.permutation()) {
+    operators_.tabulate_touching_pairs();
+  }
   int densities() const override { return 2; }
   void fill(Eigen::Index row_begin, Eigen::Index row_end, Eigen::Index col_begin,
             Eigen::Index col_end, Eigen::Ref<Eigen::MatrixXd> out) const override {

@@ -96,7 +96,6 @@ SparseRowMatrix assemble_yukawa_near_field(const std::vector<Panel>& panels,
                                            const ClusterTree& tree, double kappa,
                                            double negligible, const ProgressCallback& progress,
                                            const Eigen::VectorX<Eigen::Index>* row_sizes) {
-  const GalerkinOperators<YukawaKernel> yukawa(YukawaKernel{kappa}, panels);
   const auto& perm = tree.permutation();
   const Eigen::Index n = tree.root().size();
   const Cutoff cutoff(panels, kappa, negligible);
@@ -124,6 +123,8 @@ SparseRowMatrix assemble_yukawa_near_field(const std::vector<Panel>& panels,
   } catch (const std::bad_alloc&) {
     throw ran_out_of_memory(n);
   }
+  GalerkinOperators<YukawaKernel> yukawa(YukawaKernel{kappa}, panels);
+  yukawa.tabulate_touching_pairs();
   std::int32_t* const columns = y.innerIndexPtr();
   double* const values = y.valuePtr();
   const std::int32_t* const row_start = y.outerIndexPtr();

@@ -130,3 +130,32 @@ TEST_CASE("Yukawa attenuated entries: the trial panel's collapsed Gauss rule is 
   }
   CHECK(checked > 20);
 }
+
+TEST_CASE("Touching pairs: tabulated entries equal computed ones, V[j, k] = V[k, j] exactly") {
+  for (const auto& mesh : {geometry::make_geodesic_sphere(0.5, 4),
+                           geometry::make_box(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0.5, 0.3), 0.2)}) {
+    const auto panels = make_panels(mesh);
+    const auto n = static_cast<Eigen::Index>(panels.size());
+    const auto check = [&](auto kernel) {
+      const GalerkinOperators computed(kernel, panels);
+      GalerkinOperators tabulated(kernel, panels);
+      tabulated.tabulate_touching_pairs();
+      int touching = 0;
+      for (Eigen::Index j = 0; j < n; ++j)
+        for (Eigen::Index k = 0; k < n; ++k) {
+          if (!computed.touching(panels[size_t(j)], panels[size_t(k)])) continue;
+          ++touching;
+          const auto a = computed.entry(j, k), b = tabulated.entry(j, k), t = computed.entry(k, j);
+          REQUIRE(a.single_layer == b.single_layer);
+          REQUIRE(a.double_layer == b.double_layer);
+          REQUIRE(a.single_layer == t.single_layer);
+        }
+      // Every panel touches itself and at least its three edge neighbours.
+      CHECK(touching >= 4 * n);
+      // Pairs that do not touch are computed as before (the table holds touching pairs only).
+      CHECK(tabulated.entry(0, n - 1).single_layer == computed.entry(0, n - 1).single_layer);
+    };
+    check(LaplaceKernel{});
+    check(YukawaKernel{20.0});
+  }
+}
