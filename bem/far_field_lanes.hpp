@@ -13,17 +13,18 @@
 // points, and one pair at a time spends its time on the latency of one square root after
 // another. Here the same sums run across kFarFieldLanes pairs in SIMD registers: the pairs of
 // one row of an operator block (one test panel, consecutive trial panels) or of one column.
-// The lanes must agree on the rule; `laplace_far_field_lanes` says when they do not, and the
-// caller then takes those pairs one at a time. Same rules, same formulas: the results differ
-// from `entry` only by rounding.
+// `laplace_far_field_lanes` says which lanes it computed; the caller takes the near pairs one
+// at a time. Same rules, same formulas: the results differ from `entry` only by rounding.
 
 #include <array>
+#include <cstddef>
 
 #include <Eigen/Core>
 
 #include "bem/laplace_kernel.hpp"
 #include "bem/panel_arrays.hpp"
 #include "bem/panel_integrals.hpp"
+#include "bem/triangle_quadrature.hpp"
 
 namespace bemshape::bem {
 
@@ -81,40 +82,18 @@ struct FarFieldEntries {
   FarFieldLanes single_layer, double_layer;
 };
 
-/// The Laplace far-field entries of the kFarFieldLanes pairs, or false if some pair is closer
-/// than `far_ratio` times the larger diameter (it needs GalerkinOperators::entry's outer
-/// rules; the caller passes OuterRuleThresholds::far_ratio) or the pairs need different
-/// Gauss rules. The rule is the one integrate_panel selects (far_field_rules(),
-/// κ·diameter = 0), tested on squared distances as select_far_field_rule_squared does.
-inline bool laplace_far_field_lanes(const PanelLanes& test, const PanelLanes& trial,
-                                    double far_ratio, FarFieldEntries& out) {
-  const FarFieldLanes dx = test.centroid[0] - trial.centroid[0];
-  const FarFieldLanes dy = test.centroid[1] - trial.centroid[1];
-  const FarFieldLanes dz = test.centroid[2] - trial.centroid[2];
-  const FarFieldLanes distance2 = dx.square() + dy.square() + dz.square();
-  if (!(distance2 >= far_ratio * far_ratio * test.diameter.max(trial.diameter).square()).all()) return false;
-  // The first row of the table that every lane satisfies must be the first that any lane does.
-  const FarFieldLanes trial_diameter2 = trial.diameter.square();
-  const TriangleRule* rule = nullptr;
-  for (const FarFieldRule& row : far_field_rules()) {
-    const auto qualifies = distance2 >= row.min_ratio_squared() * trial_diameter2;
-    if (qualifies.all()) {
-      rule = row.rule;
-      break;
-    }
-    if (qualifies.any()) return false;
-  }
-  if (rule == nullptr) return false;
-
+/// The Laplace far-field entries of the pairs by `rule`, in every lane.
+inline FarFieldEntries laplace_far_field_rule(const PanelLanes& test, const PanelLanes& trial,
+                                              const TriangleRule& rule) {
   // x − a_k and d = (x − a_k)·n_k per lane.
   const FarFieldLanes ox = test.centroid[0] - trial.corner[0];
   const FarFieldLanes oy = test.centroid[1] - trial.corner[1];
   const FarFieldLanes oz = test.centroid[2] - trial.corner[2];
   const FarFieldLanes d = ox * trial.normal[0] + oy * trial.normal[1] + oz * trial.normal[2];
   FarFieldLanes sum1 = FarFieldLanes::Zero(), sum3 = FarFieldLanes::Zero();
-  for (int q = 0; q < rule->size(); ++q) {
+  for (int q = 0; q < rule.size(); ++q) {
     const auto k = static_cast<std::size_t>(q);
-    const double xi = rule->xi[k], eta = rule->eta[k], w = rule->weight[k];
+    const double xi = rule.xi[k], eta = rule.eta[k], w = rule.weight[k];
     const FarFieldLanes rx = ox - xi * trial.edge1[0] - eta * trial.edge2[0];
     const FarFieldLanes ry = oy - xi * trial.edge1[1] - eta * trial.edge2[1];
     const FarFieldLanes rz = oz - xi * trial.edge1[2] - eta * trial.edge2[2];
@@ -123,9 +102,43 @@ inline bool laplace_far_field_lanes(const PanelLanes& test, const PanelLanes& tr
     sum3 += w * inverse_r.cube();
   }
   const FarFieldLanes scale = LaplaceKernel::inv_four_pi * test.area * trial.area;
-  out.single_layer = scale * sum1;
-  out.double_layer = scale * d * sum3;
-  return true;
+  return {scale * sum1, scale * d * sum3};
+}
+
+/// The Laplace far-field entries of the kFarFieldLanes pairs, for the pairs at least
+/// `far_ratio` times the larger diameter apart (the caller passes
+/// OuterRuleThresholds::far_ratio; closer pairs need GalerkinOperators::entry's outer rules).
+/// Returns the lanes computed as a bit mask (bit l for lane l). Each lane gets the rule
+/// integrate_panel selects for it (the first row of far_field_rules() it qualifies for, on
+/// squared distances as select_far_field_rule_squared, κ·diameter = 0): one SIMD pass per
+/// distinct rule among the lanes, usually one, two where a row of trial panels crosses a
+/// threshold.
+inline unsigned laplace_far_field_lanes(const PanelLanes& test, const PanelLanes& trial,
+                                        double far_ratio, FarFieldEntries& out) {
+  const FarFieldLanes dx = test.centroid[0] - trial.centroid[0];
+  const FarFieldLanes dy = test.centroid[1] - trial.centroid[1];
+  const FarFieldLanes dz = test.centroid[2] - trial.centroid[2];
+  const FarFieldLanes distance2 = dx.square() + dy.square() + dz.square();
+  const FarFieldLanes trial_diameter2 = trial.diameter.square();
+  // Row index per lane, −1 where no row applies or the pair is not in the far field.
+  const auto& rows = far_field_rules();
+  FarFieldLanes row = FarFieldLanes::Constant(-1.0);
+  for (int r = static_cast<int>(rows.size()) - 1; r >= 0; --r)
+    row = (distance2 >= rows[static_cast<std::size_t>(r)].min_ratio_squared() * trial_diameter2)
+              .select(FarFieldLanes::Constant(r), row);
+  const auto far = distance2 >= far_ratio * far_ratio * test.diameter.max(trial.diameter).square();
+  row = far.select(row, FarFieldLanes::Constant(-1.0));
+  unsigned done = 0;
+  for (int r = 0; r < static_cast<int>(rows.size()); ++r) {
+    const auto lanes = row == double(r);
+    if (!lanes.any()) continue;
+    const FarFieldEntries e = laplace_far_field_rule(test, trial, *rows[static_cast<std::size_t>(r)].rule);
+    out.single_layer = lanes.select(e.single_layer, out.single_layer);
+    out.double_layer = lanes.select(e.double_layer, out.double_layer);
+    for (int l = 0; l < kFarFieldLanes; ++l)
+      if (lanes(l)) done |= 1u << l;
+  }
+  return done;
 }
 
 }  // namespace bemshape::bem

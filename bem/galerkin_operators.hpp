@@ -432,12 +432,15 @@ class GalerkinOperators {
         const PanelLanes test = PanelLanes::repeated(arrays_, row_begin);
         Eigen::Index c = 0;
         for (; c + lanes <= n; c += lanes) {
-          if (laplace_far_field_lanes(test, PanelLanes::consecutive(arrays_, col_begin + c),
-                                      far_ratio, e)) {
-            single_layer.block(0, c, 1, lanes) = e.single_layer.matrix().transpose();
-            double_layer.block(0, c, 1, lanes) = e.double_layer.matrix().transpose();
-          } else {
-            for (Eigen::Index l = 0; l < lanes; ++l) one(0, c + l);
+          const unsigned done = laplace_far_field_lanes(
+              test, PanelLanes::consecutive(arrays_, col_begin + c), far_ratio, e);
+          for (Eigen::Index l = 0; l < lanes; ++l) {
+            if (done & (1u << l)) {
+              single_layer(0, c + l) = e.single_layer(l);
+              double_layer(0, c + l) = e.double_layer(l);
+            } else {
+              one(0, c + l);
+            }
           }
         }
         for (; c < n; ++c) one(0, c);
@@ -447,12 +450,15 @@ class GalerkinOperators {
         const PanelLanes trial = PanelLanes::repeated(arrays_, col_begin + c);
         Eigen::Index r = 0;
         for (; r + lanes <= m; r += lanes) {
-          if (laplace_far_field_lanes(PanelLanes::consecutive(arrays_, row_begin + r), trial,
-                                      far_ratio, e)) {
-            single_layer.block(r, c, lanes, 1) = e.single_layer.matrix();
-            double_layer.block(r, c, lanes, 1) = e.double_layer.matrix();
-          } else {
-            for (Eigen::Index l = 0; l < lanes; ++l) one(r + l, c);
+          const unsigned done = laplace_far_field_lanes(
+              PanelLanes::consecutive(arrays_, row_begin + r), trial, far_ratio, e);
+          for (Eigen::Index l = 0; l < lanes; ++l) {
+            if (done & (1u << l)) {
+              single_layer(r + l, c) = e.single_layer(l);
+              double_layer(r + l, c) = e.double_layer(l);
+            } else {
+              one(r + l, c);
+            }
           }
         }
         for (; r < m; ++r) one(r, c);

@@ -73,7 +73,7 @@ TEST_CASE("Far-field lanes: fill_range gives entry()'s values along a row and al
   }
 }
 
-TEST_CASE("Far-field lanes: taken for far pairs with one rule, refused for near or mixed pairs") {
+TEST_CASE("Far-field lanes: computed for far pairs, with each lane's rule; near pairs left out") {
   const auto panels = three_spheres();
   const PanelArrays arrays(panels);
   const GalerkinOperators op(LaplaceKernel{}, panels);
@@ -82,7 +82,7 @@ TEST_CASE("Far-field lanes: taken for far pairs with one rule, refused for near 
   for (const Eigen::Index first : {kSphere + 40, 2 * kSphere + 40}) {
     REQUIRE(laplace_far_field_lanes(PanelLanes::repeated(arrays, 0),
                                     PanelLanes::consecutive(arrays, first),
-                                    OuterRuleThresholds::far_ratio, lanes));
+                                    OuterRuleThresholds::far_ratio, lanes) == 0xffu);
     for (Eigen::Index l = 0; l < kFarFieldLanes; ++l) {
       const auto e = op.entry(0, first + l);
       CHECK(lanes.single_layer(l) == Approx(e.single_layer).epsilon(1e-13));
@@ -92,14 +92,19 @@ TEST_CASE("Far-field lanes: taken for far pairs with one rule, refused for near 
   // The other orientation: 8 test panels of the first copy, one trial panel.
   REQUIRE(laplace_far_field_lanes(PanelLanes::consecutive(arrays, kSphere + 40),
                                   PanelLanes::repeated(arrays, 0),
-                                  OuterRuleThresholds::far_ratio, lanes));
+                                  OuterRuleThresholds::far_ratio, lanes) == 0xffu);
   CHECK(lanes.double_layer(3) == Approx(op.entry(kSphere + 43, 0).double_layer).epsilon(1e-13));
-  // Panel 0 among the lanes (itself, its neighbours): refused.
-  CHECK_FALSE(laplace_far_field_lanes(PanelLanes::repeated(arrays, 0),
-                                      PanelLanes::consecutive(arrays, 0),
-                                      OuterRuleThresholds::far_ratio, lanes));
-  // Lanes that need the 7-point rule (first copy) and the 3-point rule (second copy).
-  CHECK_FALSE(laplace_far_field_lanes(PanelLanes::repeated(arrays, 0),
-                                      PanelLanes::consecutive(arrays, 2 * kSphere - 4),
-                                      OuterRuleThresholds::far_ratio, lanes));
+  // Panel 0 among the lanes (itself and its neighbours at 0 … 7): not all far.
+  CHECK(laplace_far_field_lanes(PanelLanes::repeated(arrays, 0), PanelLanes::consecutive(arrays, 0),
+                                OuterRuleThresholds::far_ratio, lanes) != 0xffu);
+  // Lanes that need the 7-point rule (first copy) and the 3-point rule (second copy): both
+  // computed, each with its own rule.
+  const Eigen::Index first = 2 * kSphere - 4;
+  REQUIRE(laplace_far_field_lanes(PanelLanes::repeated(arrays, 0), PanelLanes::consecutive(arrays, first),
+                                  OuterRuleThresholds::far_ratio, lanes) == 0xffu);
+  for (Eigen::Index l = 0; l < kFarFieldLanes; ++l) {
+    const auto e = op.entry(0, first + l);
+    CHECK(lanes.single_layer(l) == Approx(e.single_layer).epsilon(1e-13));
+    CHECK(lanes.double_layer(l) == Approx(e.double_layer).epsilon(1e-13));
+  }
 }
