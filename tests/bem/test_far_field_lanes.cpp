@@ -73,7 +73,7 @@ TEST_CASE("Far-field lanes: fill_range gives entry()'s values along a row and al
   }
 }
 
-TEST_CASE("Far-field lanes: computed for far pairs, with each lane's rule; near pairs left out") {
+TEST_CASE("Far-field lanes: computed for far pairs with each lane's own rule and near pairs left out") {
   const auto panels = three_spheres();
   const PanelArrays arrays(panels);
   const GalerkinOperators op(LaplaceKernel{}, panels);
