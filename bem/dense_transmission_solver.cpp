@@ -3,6 +3,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <numeric>
 #include <sstream>
 
 #include "bem/blocked_lu.hpp"
@@ -73,8 +74,14 @@ BoundarySolution solve_transmission_dense(const geometry::SurfaceMesh& mesh,
     laplace_v.resize(1, n);
     laplace_k.resize(1, n);
     laplace.fill_range(j, j + 1, 0, n, laplace_v, laplace_k);
+    thread_local std::vector<Eigen::Index> columns;
+    thread_local std::vector<GalerkinOperators<YukawaKernel>::Entry> yukawa_row;
+    columns.resize(size_t(n));
+    std::iota(columns.begin(), columns.end(), Eigen::Index{0});
+    yukawa_row.resize(size_t(n));
+    yukawa.fill_row(j, columns, yukawa_row);
     for (Eigen::Index k = 0; k < n; ++k) {
-      const auto y = yukawa.entry(j, k);
+      const auto& y = yukawa_row[size_t(k)];
       const double half = j == k ? half_mass : 0.0;
       a(j, k) = -(half + laplace_k(0, k));
       a(j, n + k) = laplace_v(0, k);

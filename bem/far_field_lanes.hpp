@@ -1,5 +1,6 @@
 #pragma once
-// Far-field Galerkin entries of the Laplace operators for kFarFieldLanes panel pairs at once.
+// Galerkin entries of well-separated panel pairs, kFarFieldLanes pairs at once: the Laplace
+// far field, and the Yukawa pairs whose attenuation allows a low-order rule (at the end).
 //
 // For a pair (T_j, T_k) whose centroids are at least OuterRuleThresholds::far_ratio of the
 // larger diameter apart, GalerkinOperators::entry takes the test centroid x = c_j as the
@@ -22,6 +23,7 @@
 #include <Eigen/Core>
 
 #include "bem/laplace_kernel.hpp"
+#include "bem/yukawa_kernel.hpp"
 #include "bem/panel_arrays.hpp"
 #include "bem/panel_integrals.hpp"
 #include "bem/triangle_quadrature.hpp"
@@ -76,6 +78,29 @@ struct PanelLanes {
     return p;
   }
 };
+
+/// Panels panels[0] … panels[kFarFieldLanes − 1], in any order.
+inline PanelLanes gathered_panel_lanes(const PanelArrays& arrays,
+                           const std::array<Eigen::Index, kFarFieldLanes>& panels) {
+  PanelLanes p;
+  const auto lanes = [&](PanelArrays::Field f) {
+    const double* column = arrays.column(f);
+    FarFieldLanes values;
+    for (int l = 0; l < kFarFieldLanes; ++l) values(l) = column[panels[static_cast<std::size_t>(l)]];
+    return values;
+  };
+  for (int c = 0; c < 3; ++c) {
+    const auto s = static_cast<std::size_t>(c);
+    p.centroid[s] = lanes(PanelArrays::Field(PanelArrays::centroid_x + c));
+    p.corner[s] = lanes(PanelArrays::Field(PanelArrays::corner_x + c));
+    p.edge1[s] = lanes(PanelArrays::Field(PanelArrays::edge1_x + c));
+    p.edge2[s] = lanes(PanelArrays::Field(PanelArrays::edge2_x + c));
+    p.normal[s] = lanes(PanelArrays::Field(PanelArrays::normal_x + c));
+  }
+  p.area = lanes(PanelArrays::area);
+  p.diameter = lanes(PanelArrays::diameter);
+  return p;
+}
 
 /// V and K of the pairs (test lane l, trial lane l).
 struct FarFieldEntries {
@@ -139,6 +164,35 @@ inline unsigned laplace_far_field_lanes(const PanelLanes& test, const PanelLanes
       if (lanes(l)) done |= 1u << l;
   }
   return done;
+}
+
+/// The Yukawa entries of attenuated pairs (GalerkinOperators::attenuated_entry: the test
+/// centroid x against the trial panel's collapsed Gauss `rule`), in every lane:
+///   V = |T_j||T_k|/(4π) Σ_q w_q e^{−κr_q}/r_q,
+///   K = |T_j||T_k|/(4π) d Σ_q w_q e^{−κr_q}(1 + κr_q)/r_q³,
+/// r_q and d as for the Laplace far field above. κ [1/model units].
+inline FarFieldEntries yukawa_attenuated_lanes(const PanelLanes& test, const PanelLanes& trial,
+                                               double kappa, const TriangleRule& rule) {
+  const FarFieldLanes ox = test.centroid[0] - trial.corner[0];
+  const FarFieldLanes oy = test.centroid[1] - trial.corner[1];
+  const FarFieldLanes oz = test.centroid[2] - trial.corner[2];
+  const FarFieldLanes d = ox * trial.normal[0] + oy * trial.normal[1] + oz * trial.normal[2];
+  FarFieldLanes sum1 = FarFieldLanes::Zero(), sum3 = FarFieldLanes::Zero();
+  for (int q = 0; q < rule.size(); ++q) {
+    const auto k = static_cast<std::size_t>(q);
+    const double xi = rule.xi[k], eta = rule.eta[k], w = rule.weight[k];
+    const FarFieldLanes rx = ox - xi * trial.edge1[0] - eta * trial.edge2[0];
+    const FarFieldLanes ry = oy - xi * trial.edge1[1] - eta * trial.edge2[1];
+    const FarFieldLanes rz = oz - xi * trial.edge1[2] - eta * trial.edge2[2];
+    const FarFieldLanes r2 = rx.square() + ry.square() + rz.square();
+    const FarFieldLanes inverse_r = r2.rsqrt();
+    const FarFieldLanes r = r2 * inverse_r;
+    const FarFieldLanes we = w * (-kappa * r).exp() * inverse_r;
+    sum1 += we;
+    sum3 += we * (1.0 + kappa * r) * inverse_r.square();
+  }
+  const FarFieldLanes scale = YukawaKernel::inv_four_pi * test.area * trial.area;
+  return {scale * sum1, scale * d * sum3};
 }
 
 }  // namespace bemshape::bem

@@ -26,6 +26,7 @@
 #include <cmath>
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <utility>
 #include <vector>
 
@@ -190,7 +191,7 @@ class GalerkinOperators {
       : kernel_(kernel),
         panels_(&panels),
         faces_(faces),
-        arrays_(Kernel::has_exponential_decay ? PanelArrays({}) : PanelArrays(panels)) {}
+        arrays_(panels) {}
 
   struct Entry {
     double single_layer = 0.0;  ///< V[j, k]
@@ -211,8 +212,7 @@ class GalerkinOperators {
   Entry entry(Eigen::Index row, Eigen::Index col) const {
     const Panel& test = (*panels_)[static_cast<size_t>(row)];
     const Panel& trial = (*panels_)[static_cast<size_t>(col)];
-    const double ratio = (test.centroid - trial.centroid).norm() /
-                         std::max(test.diameter, trial.diameter);
+    const double ratio = separation_ratio(test, trial);
     // Panels sharing a corner have centroids at most 4/3 of the larger diameter apart (each
     // centroid lies within 2/3 of a median of the shared corner), so only near pairs can touch:
     // the far field, most of the calls, skips the corner comparison.
@@ -226,14 +226,9 @@ class GalerkinOperators {
       }
     }
     if constexpr (Kernel::has_exponential_decay) {
-      const double gap = std::max(
-          0.0, (test.centroid - trial.centroid).norm() - test.radius - trial.radius);
-      const double attenuation = std::exp(-kernel_.kappa() * gap);
-      if (attenuation < YukawaAttenuation::negligible) return {};
-      if (attenuation < YukawaAttenuation::cheap_rule && ratio >= 1.5) {
-        const int n = attenuated_rule_points(attenuation, kernel_.kappa() * trial.diameter, ratio);
-        if (n > 0) return attenuated_entry(test, trial, collapsed_gauss_rule(n));
-      }
+      const int n = attenuated_points(test, trial, ratio);
+      if (n < 0) return {};
+      if (n > 0) return attenuated_entry(test, trial, collapsed_gauss_rule(n));
     }
     if (ratio >= OuterRuleThresholds::far_ratio) {
       const PanelIntegrals p = integrate_panel(kernel_, trial, test.centroid);
@@ -244,6 +239,63 @@ class GalerkinOperators {
     if (ratio >= OuterRuleThresholds::near_ratio)
       return outer_rule_entry(test, trial, 0, symmetric_triangle_rule(4));
     return outer_rule_entry(test, trial, near_levels(test), symmetric_triangle_rule(4));
+  }
+
+  /// The separation ratio η = |c_j − c_k| / max(diam_j, diam_k) that selects entry()'s rules.
+  static double separation_ratio(const Panel& test, const Panel& trial) {
+    return (test.centroid - trial.centroid).norm() / std::max(test.diameter, trial.diameter);
+  }
+
+  /// For a Yukawa pair that does not touch: −1 if its entries are negligible (zero), n > 0 if
+  /// attenuation allows the collapsed n × n Gauss rule (attenuated_entry), 0 if entry()'s
+  /// other rules are needed. Touching pairs (gap 0) get 0. entry() and fill_row both decide
+  /// here, so they decide alike.
+  int attenuated_points(const Panel& test, const Panel& trial, double ratio) const {
+    const double gap =
+        std::max(0.0, (test.centroid - trial.centroid).norm() - test.radius - trial.radius);
+    const double attenuation = std::exp(-kernel_.kappa() * gap);
+    if (attenuation < YukawaAttenuation::negligible) return -1;
+    if (attenuation < YukawaAttenuation::cheap_rule && ratio >= 1.5)
+      return attenuated_rule_points(attenuation, kernel_.kappa() * trial.diameter, ratio);
+    return 0;
+  }
+
+  /// The entries (row, cols[i]) into out[i], as `entry` gives them. For Yukawa the attenuated
+  /// pairs are computed kFarFieldLanes at a time, grouped by their rule
+  /// (bem/far_field_lanes.hpp); the others one at a time.
+  void fill_row(Eigen::Index row, std::span<const Eigen::Index> cols, std::span<Entry> out) const {
+    if constexpr (!Kernel::has_exponential_decay) {
+      for (size_t i = 0; i < cols.size(); ++i) out[i] = entry(row, cols[i]);
+    } else {
+      constexpr int kMaxPoints = 8;  // attenuated_rule_points returns at most 8
+      thread_local std::array<std::vector<size_t>, kMaxPoints + 1> by_points;
+      for (auto& positions : by_points) positions.clear();
+      const Panel& test = (*panels_)[size_t(row)];
+      for (size_t i = 0; i < cols.size(); ++i) {
+        const Panel& trial = (*panels_)[size_t(cols[i])];
+        const int n = attenuated_points(test, trial, separation_ratio(test, trial));
+        if (n > 0)
+          by_points[size_t(n)].push_back(i);
+        else
+          out[i] = n < 0 ? Entry{} : entry(row, cols[i]);
+      }
+      const PanelLanes test_lanes = PanelLanes::repeated(arrays_, row);
+      std::array<Eigen::Index, kFarFieldLanes> lanes{};
+      for (int n = 1; n <= kMaxPoints; ++n) {
+        const auto& positions = by_points[size_t(n)];
+        const TriangleRule& rule = collapsed_gauss_rule(n);
+        for (size_t begin = 0; begin < positions.size(); begin += kFarFieldLanes) {
+          const size_t count = std::min<size_t>(kFarFieldLanes, positions.size() - begin);
+          // A short last group repeats its last pair in the spare lanes.
+          for (size_t l = 0; l < size_t(kFarFieldLanes); ++l)
+            lanes[l] = cols[positions[begin + std::min(l, count - 1)]];
+          const FarFieldEntries e = yukawa_attenuated_lanes(
+              test_lanes, gathered_panel_lanes(arrays_, lanes), kernel_.kappa(), rule);
+          for (size_t l = 0; l < count; ++l)
+            out[positions[begin + l]] = {e.single_layer(Eigen::Index(l)), e.double_layer(Eigen::Index(l))};
+        }
+      }
+    }
   }
 
   /// The entry by `rule` on T_j split into 4^levels sub-triangles, times the panel integrals
@@ -478,7 +530,7 @@ class GalerkinOperators {
   Kernel kernel_;
   const std::vector<Panel>* panels_;
   const std::vector<Eigen::Index>* faces_;  ///< face number of each panel, or null: i
-  PanelArrays arrays_;  ///< *panels_ as arrays, for fill_range (empty for Yukawa)
+  PanelArrays arrays_;  ///< *panels_ as arrays, for fill_range and fill_row
   // The touching pairs' entries (tabulate_touching_pairs; empty until then), by test panel:
   // trial panels touching_columns_[s] and entries touching_entries_[s] for s in
   // [touching_offsets_[j], touching_offsets_[j + 1]).

@@ -136,6 +136,8 @@ SparseRowMatrix assemble_yukawa_near_field(const std::vector<Panel>& panels,
     std::vector<Eigen::Index> near;
     std::vector<int> stack;
     std::vector<std::pair<std::int32_t, double>> single;
+    std::vector<Eigen::Index> kept, faces;
+    std::vector<GalerkinOperators<YukawaKernel>::Entry> entries;
     // Each row writes only its own slots, so the rows can be filled concurrently.
 #pragma omp for schedule(dynamic, 16)
     for (Eigen::Index i = 0; i < n; ++i) {
@@ -148,10 +150,18 @@ SparseRowMatrix assemble_yukawa_near_field(const std::vector<Panel>& panels,
         std::int32_t* const row_columns = columns + row_start[i];
         double* const row_values = values + row_start[i];
         std::int32_t count = 0;  // at most two per kept panel: within room(i)
+        kept.clear();
+        faces.clear();
         for (const Eigen::Index j : near) {
-          const Panel& trial = panels[size_t(perm[size_t(j)])];
-          if (!cutoff.kept(test, trial)) continue;
-          const auto e = yukawa.entry(perm[size_t(i)], perm[size_t(j)]);
+          if (!cutoff.kept(test, panels[size_t(perm[size_t(j)])])) continue;
+          kept.push_back(j);
+          faces.push_back(perm[size_t(j)]);
+        }
+        entries.resize(kept.size());
+        yukawa.fill_row(perm[size_t(i)], faces, entries);
+        for (size_t t = 0; t < kept.size(); ++t) {
+          const Eigen::Index j = kept[t];
+          const auto& e = entries[t];
           if (e.double_layer != 0.0) {
             row_columns[count] = static_cast<std::int32_t>(j);
             row_values[count++] = -e.double_layer;

@@ -1,14 +1,20 @@
-// The far-field entries computed kFarFieldLanes pairs at a time (bem/far_field_lanes.hpp,
-// GalerkinOperators::fill_range) against the same entries one pair at a time
-// (GalerkinOperators::entry): same rules and formulas, so they agree to rounding.
+// The entries computed kFarFieldLanes pairs at a time (bem/far_field_lanes.hpp: the Laplace
+// far field through GalerkinOperators::fill_range, the attenuated Yukawa pairs through
+// fill_row) against the same entries one pair at a time (GalerkinOperators::entry): same
+// rules and formulas, so they agree to rounding.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+#include <array>
+#include <cmath>
 #include <vector>
 
 #include "bem/far_field_lanes.hpp"
 #include "bem/galerkin_operators.hpp"
 #include "bem/laplace_kernel.hpp"
 #include "bem/panel.hpp"
+#include "bem/triangle_quadrature.hpp"
+#include "bem/yukawa_kernel.hpp"
 #include "geometry/primitive_meshes.hpp"
 
 using namespace bemshape;
@@ -104,6 +110,45 @@ TEST_CASE("Far-field lanes: computed for far pairs with each lane's own rule and
                                   OuterRuleThresholds::far_ratio, lanes) == 0xffu);
   for (Eigen::Index l = 0; l < kFarFieldLanes; ++l) {
     const auto e = op.entry(0, first + l);
+    CHECK(lanes.single_layer(l) == Approx(e.single_layer).epsilon(1e-13));
+    CHECK(lanes.double_layer(l) == Approx(e.double_layer).epsilon(1e-13));
+  }
+}
+
+TEST_CASE("Attenuated Yukawa lanes: fill_row gives entry()'s values") {
+  const auto panels = three_spheres();
+  const double kappa = 3.0 / panels[0].diameter;  // κ·h = 3, the default element size
+  const GalerkinOperators op(YukawaKernel{kappa}, panels);
+  const auto n = static_cast<Eigen::Index>(panels.size());
+  std::vector<Eigen::Index> columns(static_cast<std::size_t>(n));
+  for (Eigen::Index k = 0; k < n; ++k) columns[std::size_t(k)] = k;
+  std::vector<GalerkinOperators<YukawaKernel>::Entry> row(columns.size());
+  int attenuated = 0;
+  for (const Eigen::Index j : {Eigen::Index(0), Eigen::Index(77), kSphere + 5, 2 * kSphere + 300}) {
+    op.fill_row(j, columns, row);
+    double scale = 0.0;
+    for (const auto& e : row) scale = std::max(scale, std::abs(e.single_layer));
+    for (Eigen::Index k = 0; k < n; ++k) {
+      const Panel& test = panels[std::size_t(j)];
+      const Panel& trial = panels[std::size_t(k)];
+      attenuated += op.attenuated_points(test, trial, op.separation_ratio(test, trial)) > 0;
+      const auto e = op.entry(j, k);
+      const auto& f = row[std::size_t(k)];
+      REQUIRE(std::abs(f.single_layer - e.single_layer) <= 1e-13 * (std::abs(e.single_layer) + 1e-3 * scale));
+      REQUIRE(std::abs(f.double_layer - e.double_layer) <= 1e-13 * (std::abs(e.double_layer) + 1e-3 * scale));
+    }
+  }
+  // Most pairs within a sphere are attenuated at κ·h = 3 (gap > 2.3 h).
+  CHECK(attenuated > 600);
+
+  // The lanes alone, against attenuated_entry, with the 4 × 4 rule, for 8 scattered pairs.
+  const PanelArrays arrays(panels);
+  const std::array<Eigen::Index, kFarFieldLanes> trial{100, 150, 200, 250, 300, 301, 160, 170};
+  const TriangleRule& rule = collapsed_gauss_rule(4);
+  const FarFieldEntries lanes =
+      yukawa_attenuated_lanes(PanelLanes::repeated(arrays, 3), gathered_panel_lanes(arrays, trial), kappa, rule);
+  for (int l = 0; l < kFarFieldLanes; ++l) {
+    const auto e = op.attenuated_entry(panels[3], panels[std::size_t(trial[std::size_t(l)])], rule);
     CHECK(lanes.single_layer(l) == Approx(e.single_layer).epsilon(1e-13));
     CHECK(lanes.double_layer(l) == Approx(e.double_layer).epsilon(1e-13));
   }
