@@ -34,37 +34,42 @@ namespace bemshape::bem {
 inline constexpr int kFarFieldLanes = 8;
 using FarFieldLanes = Eigen::Array<double, kFarFieldLanes, 1>;
 
-/// The geometry of kFarFieldLanes panels as lanes: consecutive panels of a PanelArrays, or one
-/// panel in every lane.
+/// The geometry of kFarFieldLanes panels as lanes: consecutive panels of a PanelArrays, one
+/// panel in every lane, or any kFarFieldLanes panels.
 struct PanelLanes {
   std::array<FarFieldLanes, 3> centroid, corner, edge1, edge2, normal;
   FarFieldLanes area, diameter;
 
   /// Panels first … first + kFarFieldLanes − 1.
   static PanelLanes consecutive(const PanelArrays& arrays, Eigen::Index first) {
-    PanelLanes p;
-    const auto lanes = [&](PanelArrays::Field f) {
+    return load([&](PanelArrays::Field f) {
       return FarFieldLanes(Eigen::Map<const FarFieldLanes>(arrays.column(f) + first));
-    };
-    for (int i = 0; i < 3; ++i) {
-      const auto s = static_cast<std::size_t>(i);
-      p.centroid[s] = lanes(PanelArrays::Field(PanelArrays::centroid_x + i));
-      p.corner[s] = lanes(PanelArrays::Field(PanelArrays::corner_x + i));
-      p.edge1[s] = lanes(PanelArrays::Field(PanelArrays::edge1_x + i));
-      p.edge2[s] = lanes(PanelArrays::Field(PanelArrays::edge2_x + i));
-      p.normal[s] = lanes(PanelArrays::Field(PanelArrays::normal_x + i));
-    }
-    p.area = lanes(PanelArrays::area);
-    p.diameter = lanes(PanelArrays::diameter);
-    return p;
+    });
   }
 
   /// Panel i in every lane.
   static PanelLanes repeated(const PanelArrays& arrays, Eigen::Index i) {
-    PanelLanes p;
-    const auto lanes = [&](PanelArrays::Field f) {
+    return load([&](PanelArrays::Field f) {
       return FarFieldLanes(FarFieldLanes::Constant(arrays.column(f)[i]));
-    };
+    });
+  }
+
+  /// Panels panels[0] … panels[kFarFieldLanes − 1], in any order.
+  static PanelLanes gathered(const PanelArrays& arrays,
+                             const std::array<Eigen::Index, kFarFieldLanes>& panels) {
+    return load([&](PanelArrays::Field f) {
+      const double* column = arrays.column(f);
+      FarFieldLanes values;
+      for (int l = 0; l < kFarFieldLanes; ++l) values(l) = column[panels[static_cast<std::size_t>(l)]];
+      return values;
+    });
+  }
+
+ private:
+  /// Every field, from lanes(field).
+  template <class Lanes>
+  static PanelLanes load(const Lanes& lanes) {
+    PanelLanes p;
     for (int c = 0; c < 3; ++c) {
       const auto s = static_cast<std::size_t>(c);
       p.centroid[s] = lanes(PanelArrays::Field(PanelArrays::centroid_x + c));
@@ -78,29 +83,6 @@ struct PanelLanes {
     return p;
   }
 };
-
-/// Panels panels[0] … panels[kFarFieldLanes − 1], in any order.
-inline PanelLanes gathered_panel_lanes(const PanelArrays& arrays,
-                           const std::array<Eigen::Index, kFarFieldLanes>& panels) {
-  PanelLanes p;
-  const auto lanes = [&](PanelArrays::Field f) {
-    const double* column = arrays.column(f);
-    FarFieldLanes values;
-    for (int l = 0; l < kFarFieldLanes; ++l) values(l) = column[panels[static_cast<std::size_t>(l)]];
-    return values;
-  };
-  for (int c = 0; c < 3; ++c) {
-    const auto s = static_cast<std::size_t>(c);
-    p.centroid[s] = lanes(PanelArrays::Field(PanelArrays::centroid_x + c));
-    p.corner[s] = lanes(PanelArrays::Field(PanelArrays::corner_x + c));
-    p.edge1[s] = lanes(PanelArrays::Field(PanelArrays::edge1_x + c));
-    p.edge2[s] = lanes(PanelArrays::Field(PanelArrays::edge2_x + c));
-    p.normal[s] = lanes(PanelArrays::Field(PanelArrays::normal_x + c));
-  }
-  p.area = lanes(PanelArrays::area);
-  p.diameter = lanes(PanelArrays::diameter);
-  return p;
-}
 
 /// V and K of the pairs (test lane l, trial lane l).
 struct FarFieldEntries {

@@ -290,7 +290,7 @@ class GalerkinOperators {
           for (size_t l = 0; l < size_t(kFarFieldLanes); ++l)
             lanes[l] = cols[positions[begin + std::min(l, count - 1)]];
           const FarFieldEntries e = yukawa_attenuated_lanes(
-              test_lanes, gathered_panel_lanes(arrays_, lanes), kernel_.kappa(), rule);
+              test_lanes, PanelLanes::gathered(arrays_, lanes), kernel_.kappa(), rule);
           for (size_t l = 0; l < count; ++l)
             out[positions[begin + l]] = {e.single_layer(Eigen::Index(l)), e.double_layer(Eigen::Index(l))};
         }

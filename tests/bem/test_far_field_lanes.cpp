@@ -146,7 +146,7 @@ TEST_CASE("Attenuated Yukawa lanes: fill_row gives entry()'s values") {
   const std::array<Eigen::Index, kFarFieldLanes> trial{100, 150, 200, 250, 300, 301, 160, 170};
   const TriangleRule& rule = collapsed_gauss_rule(4);
   const FarFieldEntries lanes =
-      yukawa_attenuated_lanes(PanelLanes::repeated(arrays, 3), gathered_panel_lanes(arrays, trial), kappa, rule);
+      yukawa_attenuated_lanes(PanelLanes::repeated(arrays, 3), PanelLanes::gathered(arrays, trial), kappa, rule);
   for (int l = 0; l < kFarFieldLanes; ++l) {
     const auto e = op.attenuated_entry(panels[3], panels[std::size_t(trial[std::size_t(l)])], rule);
     CHECK(lanes.single_layer(l) == Approx(e.single_layer).epsilon(1e-13));
