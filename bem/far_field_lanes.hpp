@@ -23,7 +23,6 @@
 #include <Eigen/Core>
 
 #include "bem/laplace_kernel.hpp"
-#include "bem/yukawa_kernel.hpp"
 #include "bem/panel_arrays.hpp"
 #include "bem/panel_integrals.hpp"
 #include "bem/triangle_quadrature.hpp"
@@ -89,27 +88,40 @@ struct FarFieldEntries {
   FarFieldLanes single_layer, double_layer;
 };
 
-/// The Laplace far-field entries of the pairs by `rule`, in every lane.
-inline FarFieldEntries laplace_far_field_rule(const PanelLanes& test, const PanelLanes& trial,
-                                              const TriangleRule& rule) {
+/// V = |T_j||T_k|/(4π) Σ_q w_q g(r_q) and K = |T_j||T_k|/(4π) d Σ_q w_q h(r_q) of the pairs by
+/// `rule` on the trial panels, in every lane, with terms(r², g, h) giving a kernel's
+/// g = E(r)/r and h = E(r)(1 + κr)/r³ (E = 1 for Laplace, e^{−κr} for Yukawa).
+template <class Terms>
+FarFieldEntries far_field_sums(const PanelLanes& test, const PanelLanes& trial,
+                               const TriangleRule& rule, const Terms& terms) {
   // x − a_k and d = (x − a_k)·n_k per lane.
   const FarFieldLanes ox = test.centroid[0] - trial.corner[0];
   const FarFieldLanes oy = test.centroid[1] - trial.corner[1];
   const FarFieldLanes oz = test.centroid[2] - trial.corner[2];
   const FarFieldLanes d = ox * trial.normal[0] + oy * trial.normal[1] + oz * trial.normal[2];
-  FarFieldLanes sum1 = FarFieldLanes::Zero(), sum3 = FarFieldLanes::Zero();
+  FarFieldLanes sum_g = FarFieldLanes::Zero(), sum_h = FarFieldLanes::Zero(), g, h;
   for (int q = 0; q < rule.size(); ++q) {
     const auto k = static_cast<std::size_t>(q);
     const double xi = rule.xi[k], eta = rule.eta[k], w = rule.weight[k];
     const FarFieldLanes rx = ox - xi * trial.edge1[0] - eta * trial.edge2[0];
     const FarFieldLanes ry = oy - xi * trial.edge1[1] - eta * trial.edge2[1];
     const FarFieldLanes rz = oz - xi * trial.edge1[2] - eta * trial.edge2[2];
-    const FarFieldLanes inverse_r = (rx.square() + ry.square() + rz.square()).rsqrt();
-    sum1 += w * inverse_r;
-    sum3 += w * inverse_r.cube();
+    terms(FarFieldLanes(rx.square() + ry.square() + rz.square()), g, h);
+    sum_g += w * g;
+    sum_h += w * h;
   }
   const FarFieldLanes scale = LaplaceKernel::inv_four_pi * test.area * trial.area;
-  return {scale * sum1, scale * d * sum3};
+  return {scale * sum_g, scale * d * sum_h};
+}
+
+/// The Laplace far-field entries of the pairs by `rule`, in every lane.
+inline FarFieldEntries laplace_far_field_rule(const PanelLanes& test, const PanelLanes& trial,
+                                              const TriangleRule& rule) {
+  return far_field_sums(test, trial, rule,
+                        [](const FarFieldLanes& r2, FarFieldLanes& g, FarFieldLanes& h) {
+                          g = r2.rsqrt();
+                          h = g.cube();
+                        });
 }
 
 /// The Laplace far-field entries of the kFarFieldLanes pairs, for the pairs at least
@@ -155,26 +167,13 @@ inline unsigned laplace_far_field_lanes(const PanelLanes& test, const PanelLanes
 /// r_q and d as for the Laplace far field above. κ [1/model units].
 inline FarFieldEntries yukawa_attenuated_lanes(const PanelLanes& test, const PanelLanes& trial,
                                                double kappa, const TriangleRule& rule) {
-  const FarFieldLanes ox = test.centroid[0] - trial.corner[0];
-  const FarFieldLanes oy = test.centroid[1] - trial.corner[1];
-  const FarFieldLanes oz = test.centroid[2] - trial.corner[2];
-  const FarFieldLanes d = ox * trial.normal[0] + oy * trial.normal[1] + oz * trial.normal[2];
-  FarFieldLanes sum1 = FarFieldLanes::Zero(), sum3 = FarFieldLanes::Zero();
-  for (int q = 0; q < rule.size(); ++q) {
-    const auto k = static_cast<std::size_t>(q);
-    const double xi = rule.xi[k], eta = rule.eta[k], w = rule.weight[k];
-    const FarFieldLanes rx = ox - xi * trial.edge1[0] - eta * trial.edge2[0];
-    const FarFieldLanes ry = oy - xi * trial.edge1[1] - eta * trial.edge2[1];
-    const FarFieldLanes rz = oz - xi * trial.edge1[2] - eta * trial.edge2[2];
-    const FarFieldLanes r2 = rx.square() + ry.square() + rz.square();
-    const FarFieldLanes inverse_r = r2.rsqrt();
-    const FarFieldLanes r = r2 * inverse_r;
-    const FarFieldLanes we = w * (-kappa * r).exp() * inverse_r;
-    sum1 += we;
-    sum3 += we * (1.0 + kappa * r) * inverse_r.square();
-  }
-  const FarFieldLanes scale = YukawaKernel::inv_four_pi * test.area * trial.area;
-  return {scale * sum1, scale * d * sum3};
+  return far_field_sums(test, trial, rule,
+                        [kappa](const FarFieldLanes& r2, FarFieldLanes& g, FarFieldLanes& h) {
+                          const FarFieldLanes inverse_r = r2.rsqrt();
+                          const FarFieldLanes r = r2 * inverse_r;
+                          g = (-kappa * r).exp() * inverse_r;
+                          h = g * (1.0 + kappa * r) * inverse_r.square();
+                        });
 }
 
 }  // namespace bemshape::bem
