@@ -88,11 +88,15 @@ BoundarySolution solve_transmission_hmatrix(const geometry::SurfaceMesh& mesh,
 
   report_progress(progress, "assemble", 0.0);
   const auto interior_start = Clock::now();
-  const GalerkinBlockGenerator<LaplaceKernel> generator(LaplaceKernel{}, panels, tree);
-  const HierarchicalMatrix laplace(
-      tree, generator,
-      {options.aca_tolerance, options.eta, options.single_precision, options.single_precision},
-      progress);
+  // The generator (tree-ordered panels, their arrays, the touching pairs' table: about
+  // 0.65 kB per panel) is released as soon as the blocks are built.
+  const HierarchicalMatrix laplace = [&] {
+    const GalerkinBlockGenerator<LaplaceKernel> generator(LaplaceKernel{}, panels, tree);
+    return HierarchicalMatrix(
+        tree, generator,
+        {options.aca_tolerance, options.eta, options.single_precision, options.single_precision},
+        progress);
+  }();
   const double interior_seconds = seconds_since(interior_start);
   report_progress(progress, "assemble exterior", 0.0);
   const auto exterior_start = Clock::now();
