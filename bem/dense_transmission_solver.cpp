@@ -60,6 +60,9 @@ BoundarySolution solve_transmission_dense(const geometry::SurfaceMesh& mesh,
   // Jump of the normal derivative, g_i = n_i/ã, per face (P0).
   const Eigen::MatrixX3d jump = mesh.face_normals() / parameters.a_tilde;
 
+  // Every face, the columns of each row's exterior entries (GalerkinOperators::fill_row).
+  std::vector<Eigen::Index> columns(static_cast<size_t>(n));
+  std::iota(columns.begin(), columns.end(), Eigen::Index{0});
   Eigen::MatrixXd a(2 * n, 2 * n);
   Eigen::MatrixXd b = Eigen::MatrixXd::Zero(2 * n, 3);
   std::atomic<Eigen::Index> rows_done{0};
@@ -74,10 +77,7 @@ BoundarySolution solve_transmission_dense(const geometry::SurfaceMesh& mesh,
     laplace_v.resize(1, n);
     laplace_k.resize(1, n);
     laplace.fill_range(j, j + 1, 0, n, laplace_v, laplace_k);
-    thread_local std::vector<Eigen::Index> columns;
     thread_local std::vector<GalerkinOperators<YukawaKernel>::Entry> yukawa_row;
-    columns.resize(size_t(n));
-    std::iota(columns.begin(), columns.end(), Eigen::Index{0});
     yukawa_row.resize(size_t(n));
     yukawa.fill_row(j, columns, yukawa_row);
     for (Eigen::Index k = 0; k < n; ++k) {

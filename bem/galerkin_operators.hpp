@@ -480,39 +480,36 @@ class GalerkinOperators {
       constexpr Eigen::Index lanes = kFarFieldLanes;
       constexpr double far_ratio = OuterRuleThresholds::far_ratio;
       FarFieldEntries e;
+      // Lane l of a pass starting at (r, c) is entry (r + l·dr, c + l·dc): the lanes' values
+      // where they were computed, entry() for the rest.
+      const auto store = [&](unsigned done, Eigen::Index r, Eigen::Index c, Eigen::Index dr,
+                             Eigen::Index dc) {
+        for (Eigen::Index l = 0; l < lanes; ++l) {
+          if (done & (1u << l)) {
+            single_layer(r + l * dr, c + l * dc) = e.single_layer(l);
+            double_layer(r + l * dr, c + l * dc) = e.double_layer(l);
+          } else {
+            one(r + l * dr, c + l * dc);
+          }
+        }
+      };
       if (m == 1) {
         const PanelLanes test = PanelLanes::repeated(arrays_, row_begin);
         Eigen::Index c = 0;
-        for (; c + lanes <= n; c += lanes) {
-          const unsigned done = laplace_far_field_lanes(
-              test, PanelLanes::consecutive(arrays_, col_begin + c), far_ratio, e);
-          for (Eigen::Index l = 0; l < lanes; ++l) {
-            if (done & (1u << l)) {
-              single_layer(0, c + l) = e.single_layer(l);
-              double_layer(0, c + l) = e.double_layer(l);
-            } else {
-              one(0, c + l);
-            }
-          }
-        }
+        for (; c + lanes <= n; c += lanes)
+          store(laplace_far_field_lanes(test, PanelLanes::consecutive(arrays_, col_begin + c),
+                                        far_ratio, e),
+                0, c, 0, 1);
         for (; c < n; ++c) one(0, c);
         return;
       }
       for (Eigen::Index c = 0; c < n; ++c) {
         const PanelLanes trial = PanelLanes::repeated(arrays_, col_begin + c);
         Eigen::Index r = 0;
-        for (; r + lanes <= m; r += lanes) {
-          const unsigned done = laplace_far_field_lanes(
-              PanelLanes::consecutive(arrays_, row_begin + r), trial, far_ratio, e);
-          for (Eigen::Index l = 0; l < lanes; ++l) {
-            if (done & (1u << l)) {
-              single_layer(r + l, c) = e.single_layer(l);
-              double_layer(r + l, c) = e.double_layer(l);
-            } else {
-              one(r + l, c);
-            }
-          }
-        }
+        for (; r + lanes <= m; r += lanes)
+          store(laplace_far_field_lanes(PanelLanes::consecutive(arrays_, row_begin + r), trial,
+                                        far_ratio, e),
+                r, c, 1, 0);
         for (; r < m; ++r) one(r, c);
       }
       return;
