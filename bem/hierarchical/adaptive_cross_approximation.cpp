@@ -34,24 +34,32 @@ std::optional<LowRankBlock> adaptive_cross_approximation(Eigen::Index m, Eigen::
                                                          const RowGenerator& row,
                                                          const ColumnGenerator& column,
                                                          double epsilon, Eigen::Index max_rank) {
-  std::vector<Eigen::VectorXd> us, vs;
+  // The crosses so far, u_l = U(:, l) and v_l = V(:, l) for l < k, in contiguous columns so
+  // that each residual update is one matrix-vector product (the rank grows by doubling).
+  Eigen::Index capacity = std::min<Eigen::Index>(std::max<Eigen::Index>(max_rank, 1), 16);
+  Eigen::MatrixXd U(m, capacity), V(n, capacity);
+  Eigen::Index k = 0;
   std::vector<bool> used(static_cast<size_t>(m), false);
   Eigen::VectorXd r(n), c(m);
-  double norm2 = 0.0;  // ‖Σ u_l v_lᵀ‖_F²
+  double norm2 = 0.0;  // ‖U Vᵀ‖_F²
   Eigen::Index pivot_row = 0;
   int zero_rows = 0;
   const auto next_unused = [&](Eigen::Index from) {
-    for (Eigen::Index k = 0; k < m; ++k) {
-      const Eigen::Index i = (from + k) % m;
+    for (Eigen::Index t = 0; t < m; ++t) {
+      const Eigen::Index i = (from + t) % m;
       if (!used[size_t(i)]) return i;
     }
     return Eigen::Index{-1};
   };
+  // r = A(i, :) − U(i, :) Vᵀ
+  const auto residual_row = [&](Eigen::Index i) {
+    row(i, r);
+    if (k > 0) r.noalias() -= V.leftCols(k) * U.row(i).head(k).transpose();
+  };
   while (true) {
-    if (static_cast<Eigen::Index>(us.size()) >= max_rank) return std::nullopt;
+    if (k >= max_rank) return std::nullopt;
     used[size_t(pivot_row)] = true;
-    row(pivot_row, r);
-    for (size_t l = 0; l < us.size(); ++l) r -= us[l](pivot_row) * vs[l];
+    residual_row(pivot_row);
     Eigen::Index pivot_col = 0;
     const double pivot = r.cwiseAbs().maxCoeff(&pivot_col);
     if (!(pivot > kZeroPivot * std::sqrt(norm2)) || pivot == 0.0) {
@@ -64,15 +72,22 @@ std::optional<LowRankBlock> adaptive_cross_approximation(Eigen::Index m, Eigen::
       pivot_row = next;
       continue;
     }
-    Eigen::VectorXd v = r / r(pivot_col);
+    if (k == capacity) {
+      capacity = std::min(2 * capacity, max_rank);
+      U.conservativeResize(Eigen::NoChange, capacity);
+      V.conservativeResize(Eigen::NoChange, capacity);
+    }
+    V.col(k) = r / r(pivot_col);
     column(pivot_col, c);
-    for (size_t l = 0; l < us.size(); ++l) c -= vs[l](pivot_col) * us[l];
-    // ‖S_k‖² = ‖S_{k−1}‖² + 2 Σ_l (u_l·u)(v_l·v) + ‖u‖²‖v‖²
-    for (size_t l = 0; l < us.size(); ++l) norm2 += 2.0 * us[l].dot(c) * vs[l].dot(v);
-    const double step = c.norm() * v.norm();
+    if (k > 0) {
+      c.noalias() -= U.leftCols(k) * V.row(pivot_col).head(k).transpose();
+      // ‖S_k‖² = ‖S_{k−1}‖² + 2 Σ_l (u_l·u)(v_l·v) + ‖u‖²‖v‖²
+      norm2 += 2.0 * (U.leftCols(k).transpose() * c).dot(V.leftCols(k).transpose() * V.col(k));
+    }
+    U.col(k) = c;
+    const double step = c.norm() * V.col(k).norm();
     norm2 += step * step;
-    us.push_back(c);
-    vs.push_back(std::move(v));
+    ++k;
     if (step <= epsilon * std::sqrt(norm2)) {
       // Converged by the estimate: check a few unused rows, spread over the block.
       Eigen::Index failing = -1;
@@ -81,8 +96,7 @@ std::optional<LowRankBlock> adaptive_cross_approximation(Eigen::Index m, Eigen::
         const Eigen::Index i = next_unused((t * m) / (kCheckRows + 1) + pivot_row);
         if (i < 0) break;
         used[size_t(i)] = true;  // checked: its residual is known to be small
-        row(i, r);
-        for (size_t l = 0; l < us.size(); ++l) r -= us[l](i) * vs[l];
+        residual_row(i);
         if (r.norm() > allowed) failing = i;
       }
       if (failing < 0) break;
@@ -102,24 +116,20 @@ std::optional<LowRankBlock> adaptive_cross_approximation(Eigen::Index m, Eigen::
     pivot_row = best;
   }
   LowRankBlock block;
-  block.U.resize(m, static_cast<Eigen::Index>(us.size()));
-  block.V.resize(n, static_cast<Eigen::Index>(vs.size()));
-  for (size_t l = 0; l < us.size(); ++l) {
-    block.U.col(Eigen::Index(l)) = us[l];
-    block.V.col(Eigen::Index(l)) = vs[l];
-  }
+  block.U = U.leftCols(k);
+  block.V = V.leftCols(k);
   return recompress(block, epsilon);
 }
 
 LowRankBlock recompress(const LowRankBlock& block, double epsilon) {
   const Eigen::Index k = block.rank();
-  if (k == 0) return block;
+  if (k <= 1) return block;  // rank one is minimal (a zero cross never enters the block)
   const Eigen::HouseholderQR<Eigen::MatrixXd> qu(block.U), qv(block.V);
   const Eigen::Index ku = std::min(k, block.U.rows()), kv = std::min(k, block.V.rows());
   const Eigen::MatrixXd ru = qu.matrixQR().topRows(ku).template triangularView<Eigen::Upper>();
   const Eigen::MatrixXd rv = qv.matrixQR().topRows(kv).template triangularView<Eigen::Upper>();
-  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(ru * rv.transpose(),
-                                              Eigen::ComputeThinU | Eigen::ComputeThinV);
+  const Eigen::BDCSVD<Eigen::MatrixXd> svd(ru * rv.transpose(),
+                                           Eigen::ComputeThinU | Eigen::ComputeThinV);
   const Eigen::VectorXd& sigma = svd.singularValues();
   const double total2 = sigma.squaredNorm();
   Eigen::Index r = sigma.size();
@@ -128,11 +138,15 @@ LowRankBlock recompress(const LowRankBlock& block, double epsilon) {
     tail2 += sigma(r - 1) * sigma(r - 1);
     --r;
   }
+  // U' = Q_u [W_r Σ_r; 0] and V' = Q_v [Z_r; 0]: the Householder reflectors applied to the
+  // r kept columns only (forming Q_u explicitly would cost k/r times more).
   LowRankBlock out;
-  const Eigen::MatrixXd eu = qu.householderQ() * Eigen::MatrixXd::Identity(block.U.rows(), ku);
-  const Eigen::MatrixXd ev = qv.householderQ() * Eigen::MatrixXd::Identity(block.V.rows(), kv);
-  out.U = eu * (svd.matrixU().leftCols(r) * sigma.head(r).asDiagonal());
-  out.V = ev * svd.matrixV().leftCols(r);
+  out.U = Eigen::MatrixXd::Zero(block.U.rows(), r);
+  out.U.topRows(ku) = svd.matrixU().leftCols(r) * sigma.head(r).asDiagonal();
+  out.U.applyOnTheLeft(qu.householderQ());
+  out.V = Eigen::MatrixXd::Zero(block.V.rows(), r);
+  out.V.topRows(kv) = svd.matrixV().leftCols(r);
+  out.V.applyOnTheLeft(qv.householderQ());
   return out;
 }
 
