@@ -36,6 +36,7 @@
 #include "bem/panel.hpp"
 #include "bem/panel_arrays.hpp"
 #include "bem/panel_integrals.hpp"
+#include "bem/radial_moments.hpp"
 #include "bem/radial_values.hpp"
 #include "bem/sauter_schwab_rules.hpp"
 #include "bem/triangle_quadrature.hpp"
@@ -162,9 +163,9 @@ inline std::optional<TouchingOrder> touching_order(const Panel& test, const Pane
 /// (tests/bem/test_sauter_schwab_rules.cpp, docs/quadrature.md): the single layer is within
 /// 6e−6 relative and the double layer within 7e−5 of |V|/diameter, the aim being about 1e−5,
 /// far below the discretisation error; the subdivided outer rule used for these pairs before
-/// was off by 2e−3 on coincident pairs. The Yukawa exponential needs more points as
-/// κ·diameter grows, most of all for vertex neighbours, whose points lie up to two diameters
-/// apart.
+/// was off by 2e−3 on coincident pairs. The radial direction is exact (bem/radial_moments.hpp);
+/// in the angular ones the Yukawa exponential needs more points as κ·diameter grows, most of
+/// all for vertex neighbours, whose points lie up to two diameters apart.
 inline int touching_rule_points(TouchingKind kind, double kappa_diameter) {
   struct Row {
     double max_kappa_diameter;
@@ -349,27 +350,28 @@ class GalerkinOperators {
   }
 
   /// The entries of two touching panels by a Sauter–Schwab rule: with χ_j, χ_k the affine maps
-  /// of the reordered panels (Jacobians 2|T_j|, 2|T_k|),
-  ///   V = 4|T_j||T_k| Σ_q w_q G(r_q),  K[j, k] = 4|T_j||T_k| Σ_q w_q (−d_q G'(r_q)/r_q),
-  /// r_q = |χ_j(x̂_q) − χ_k(ŷ_q)|, d_q = (χ_j(x̂_q) − χ_k(ŷ_q))·n_k; K[k, j] is the same sum
-  /// with d'_q = (χ_k(ŷ_q) − χ_j(x̂_q))·n_j (the roles of the points swapped). K vanishes for
-  /// coincident panels (d ≡ 0 on a flat panel) and is set to exactly 0 there.
+  /// of the reordered panels (Jacobians 2|T_j|, 2|T_k|), both with the shared corner first
+  /// (so χ_j(0) = χ_k(0)), and z_q = χ_j(x̂_q) − χ_k(ŷ_q), ρ_q = |z_q|, δ_q = z_q·n_k at the
+  /// rule's nodes (ξ = 1), the radial direction integrated exactly (bem/radial_moments.hpp):
+  ///   V = 4|T_j||T_k| Σ_q w_q M_V(κρ_q)/(4πρ_q),  K[j, k] = 4|T_j||T_k| Σ_q w_q δ_q M_K(κρ_q)/(4πρ_q³);
+  /// K[k, j] is the same sum with δ'_q = −z_q·n_j (the roles of the points swapped). K vanishes
+  /// for coincident panels (δ ≡ 0 on a flat panel) and is set to exactly 0 there.
   TouchingPairEntries touching_pair(const Panel& test, const Panel& trial,
                                     const TouchingOrder& order, const SauterSchwabRule& rule) const {
     const auto corner = [](const Panel& p, const std::array<int, 3>& o, int i) -> const Eigen::Vector3d& {
       return p.corners[size_t(o[size_t(i)])];
     };
-    const Eigen::Vector3d a = corner(test, order.test, 0) - corner(trial, order.trial, 0);
+    BEMSHAPE_ASSERT(corner(test, order.test, 0) == corner(trial, order.trial, 0),
+                    "touching_pair: the panels' first corners differ");
     const Eigen::Vector3d t1 = corner(test, order.test, 1) - corner(test, order.test, 0);
     const Eigen::Vector3d t2 = corner(test, order.test, 2) - corner(test, order.test, 1);
     const Eigen::Vector3d s1 = corner(trial, order.trial, 1) - corner(trial, order.trial, 0);
     const Eigen::Vector3d s2 = corner(trial, order.trial, 2) - corner(trial, order.trial, 1);
     const Eigen::Vector3d& n = trial.normal;
     const Eigen::Vector3d& m = test.normal;
-    const double an = a.dot(n), t1n = t1.dot(n), t2n = t2.dot(n);
-    const double am = a.dot(m), s1m = s1.dot(m), s2m = s2.dot(m);
-    // Evaluated in chunks as Eigen arrays (radial_kernel_terms), which vectorise the square
-    // roots and exponentials.
+    const double t1n = t1.dot(n), t2n = t2.dot(n);
+    const double s1m = s1.dot(m), s2m = s2.dot(m);
+    // Evaluated in chunks as Eigen arrays, which vectorise the square roots and exponentials.
     constexpr Eigen::Index chunk = 256;
     using Chunk = Eigen::Array<double, Eigen::Dynamic, 1, 0, chunk, 1>;
     using Nodes = Eigen::Map<const Eigen::ArrayXd>;
@@ -381,14 +383,22 @@ class GalerkinOperators {
       const Nodes x1(rule.x1.data() + begin, count), x2(rule.x2.data() + begin, count);
       const Nodes y1(rule.y1.data() + begin, count), y2(rule.y2.data() + begin, count);
       const Nodes w(rule.weight.data() + begin, count);
-      const Chunk dx = a.x() + x1 * t1.x() + x2 * t2.x() - y1 * s1.x() - y2 * s2.x();
-      const Chunk dy = a.y() + x1 * t1.y() + x2 * t2.y() - y1 * s1.y() - y2 * s2.y();
-      const Chunk dz = a.z() + x1 * t1.z() + x2 * t2.z() - y1 * s1.z() - y2 * s2.z();
-      radial_kernel_terms(kernel_, Chunk(dx.square() + dy.square() + dz.square()), single,
-                          double_layer);
-      // (x − y)·n_k: the trial panel's own edges are orthogonal to n_k; (y − x)·n_j likewise.
-      const Chunk d = an + x1 * t1n + x2 * t2n;
-      const Chunk d_transposed = y1 * s1m + y2 * s2m - am;
+      const Chunk zx = x1 * t1.x() + x2 * t2.x() - y1 * s1.x() - y2 * s2.x();
+      const Chunk zy = x1 * t1.y() + x2 * t2.y() - y1 * s1.y() - y2 * s2.y();
+      const Chunk zz = x1 * t1.z() + x2 * t2.z() - y1 * s1.z() - y2 * s2.z();
+      const Chunk rho2 = zx.square() + zy.square() + zz.square();
+      const Chunk inv_rho = rho2.rsqrt();
+      if constexpr (Kernel::has_exponential_decay) {
+        yukawa_radial_moments(Chunk(kernel_.kappa() * rho2 * inv_rho), single, double_layer);
+        single *= inv_rho;
+        double_layer *= inv_rho.cube();
+      } else {
+        single = (1.0 / 3.0) * inv_rho;
+        double_layer = 0.5 * inv_rho.cube();
+      }
+      // z·n_k: the trial panel's own edges are orthogonal to n_k; −z·n_j likewise.
+      const Chunk d = x1 * t1n + x2 * t2n;
+      const Chunk d_transposed = y1 * s1m + y2 * s2m;
       const Chunk wd = w * double_layer;
       sl += (w * single).sum();
       dl += (wd * d).sum();

@@ -59,25 +59,24 @@ SauterSchwabRule make_rule(TouchingKind kind, int n) {
   }
   const int regions = kind == TouchingKind::coincident ? 6 : kind == TouchingKind::common_edge ? 5 : 2;
   SauterSchwabRule rule;
-  const size_t size = size_t(regions) * size_t(n) * size_t(n) * size_t(n) * size_t(n);
+  const size_t size = size_t(regions) * size_t(n) * size_t(n) * size_t(n);
   for (auto* v : {&rule.x1, &rule.x2, &rule.y1, &rule.y2, &rule.weight}) v->reserve(size);
+  // ξ = 1: the radial direction is the caller's (see the header).
   for (int region = 0; region < regions; ++region)
-    for (int a = 0; a < n; ++a)
-      for (int b = 0; b < n; ++b)
-        for (int c = 0; c < n; ++c)
-          for (int d = 0; d < n; ++d) {
-            const double xi = t[size_t(a)], e1 = t[size_t(b)], e2 = t[size_t(c)], e3 = t[size_t(d)];
-            const Point4 p = kind == TouchingKind::coincident ? coincident(region, xi, e1, e2, e3)
-                             : kind == TouchingKind::common_edge
-                                 ? common_edge(region, xi, e1, e2, e3)
-                                 : common_vertex(region, xi, e1, e2, e3);
-            rule.x1.push_back(p.x1);
-            rule.x2.push_back(p.x2);
-            rule.y1.push_back(p.y1);
-            rule.y2.push_back(p.y2);
-            rule.weight.push_back(p.jacobian * w[size_t(a)] * w[size_t(b)] * w[size_t(c)] *
-                                  w[size_t(d)]);
-          }
+    for (int b = 0; b < n; ++b)
+      for (int c = 0; c < n; ++c)
+        for (int d = 0; d < n; ++d) {
+          const double e1 = t[size_t(b)], e2 = t[size_t(c)], e3 = t[size_t(d)];
+          const Point4 p = kind == TouchingKind::coincident ? coincident(region, 1.0, e1, e2, e3)
+                           : kind == TouchingKind::common_edge
+                               ? common_edge(region, 1.0, e1, e2, e3)
+                               : common_vertex(region, 1.0, e1, e2, e3);
+          rule.x1.push_back(p.x1);
+          rule.x2.push_back(p.x2);
+          rule.y1.push_back(p.y1);
+          rule.y2.push_back(p.y2);
+          rule.weight.push_back(p.jacobian * w[size_t(b)] * w[size_t(c)] * w[size_t(d)]);
+        }
   return rule;
 }
 

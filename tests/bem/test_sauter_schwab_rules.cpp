@@ -1,6 +1,7 @@
 // The Sauter–Schwab rules for touching triangles: exact for polynomials on T̂ × T̂ (which
-// checks the sub-domain maps and their Jacobians), and the touching Galerkin entries they give
-// converge to the same values as the slow subdivided reference.
+// checks the sub-domain maps and their Jacobians), the closed-form radial moments equal their
+// integrals, and the touching Galerkin entries they give converge to the same values as the
+// slow subdivided reference.
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -8,7 +9,9 @@
 
 #include "bem/galerkin_operators.hpp"
 #include "bem/laplace_kernel.hpp"
+#include "bem/gauss_legendre.hpp"
 #include "bem/panel.hpp"
+#include "bem/radial_moments.hpp"
 #include "bem/sauter_schwab_rules.hpp"
 #include "bem/yukawa_kernel.hpp"
 #include "geometry/primitive_meshes.hpp"
@@ -28,21 +31,48 @@ const TouchingKind kKinds[] = {TouchingKind::coincident, TouchingKind::common_ed
 TEST_CASE("Sauter-Schwab rules integrate polynomials on the pair of reference triangles exactly") {
   for (const TouchingKind kind : kKinds) {
     const SauterSchwabRule& rule = sauter_schwab_rule(kind, 5);
-    CHECK(rule.size() == (kind == TouchingKind::coincident ? 6 : kind == TouchingKind::common_edge ? 5 : 2) * 625);
+    CHECK(rule.size() == (kind == TouchingKind::coincident ? 6 : kind == TouchingKind::common_edge ? 5 : 2) * 125);
     for (int a = 0; a <= 2; ++a)
       for (int b = 0; b <= 2 - a; ++b)
         for (int c = 0; c <= 2; ++c)
           for (int d = 0; d <= 2 - c; ++d) {
+            // The nodes are at ξ = 1 and the maps linear in ξ: a monomial of degree D has the
+            // radial integral ∫_0^1 ξ³ ξ^D dξ = 1/(D + 4).
+            const double radial = 1.0 / (a + b + c + d + 4.0);
             double sum = 0.0;
             for (int q = 0; q < rule.size(); ++q) {
               const auto i = static_cast<size_t>(q);
-              sum += rule.weight[i] * std::pow(rule.x1[i], a) * std::pow(rule.x2[i], b) *
+              sum += rule.weight[i] * radial * std::pow(rule.x1[i], a) * std::pow(rule.x2[i], b) *
                      std::pow(rule.y1[i], c) * std::pow(rule.y2[i], d);
             }
             INFO("kind " << int(kind) << " monomial x1^" << a << " x2^" << b << " y1^" << c << " y2^" << d);
             CHECK(sum == Approx(monomial_integral(a, b) * monomial_integral(c, d)).epsilon(1e-12));
           }
   }
+}
+
+TEST_CASE("radial moments equal their integrals on both sides of the series threshold") {
+  // ∫_0^1 ξ² e^{−cξ} dξ and ∫_0^1 ξ(1 + cξ) e^{−cξ} dξ by a 40-point Gauss rule (exact to
+  // rounding for these entire integrands at c ≤ 40), against yukawa_radial_moments.
+  const auto& gl = gauss_legendre(40);
+  Eigen::ArrayXd c(9);
+  c << 1e-6, 0.01, 0.3, 0.999, 1.0, 1.001, 3.0, 12.0, 40.0;
+  Eigen::ArrayXd single, double_layer;
+  yukawa_radial_moments(c, single, double_layer);
+  for (Eigen::Index i = 0; i < c.size(); ++i) {
+    double reference_single = 0.0, reference_double = 0.0;
+    for (size_t q = 0; q < gl.nodes.size(); ++q) {
+      const double xi = 0.5 * (1.0 + gl.nodes[q]), w = 0.5 * gl.weights[q];
+      reference_single += w * xi * xi * std::exp(-c(i) * xi);
+      reference_double += w * xi * (1.0 + c(i) * xi) * std::exp(-c(i) * xi);
+    }
+    INFO("c = " << c(i));
+    CHECK(single(i) == Approx(reference_single).epsilon(1e-14));
+    CHECK(double_layer(i) == Approx(reference_double).epsilon(1e-14));
+  }
+  // The Laplace limits.
+  CHECK(single(0) == Approx(1.0 / 3.0).epsilon(1e-6));
+  CHECK(double_layer(0) == Approx(0.5).epsilon(1e-6));
 }
 
 TEST_CASE("Sauter-Schwab rules put every node inside the reference triangle") {
