@@ -4,6 +4,8 @@
 //
 //   bench_fast_path sphere|plate|box FACES [dense|hmatrix|both] [--tolerance T] [--aca E]
 //                   [--leaf L] [--eta H] [--single|--double] [--block B] [--coarse C]
+//   bench_fast_path file MESH H0 [dense|hmatrix|both] [options as above]
+//                   (a mesh file as the solver mesh, no refinement; no closed form, error 0)
 //   bench_fast_path entry-costs FACES     (where a row of the operators spends its time)
 //   bench_fast_path interior sphere|box FACES POINTS [--solve] [--order P] [--theta T]
 //                   [--leaf L] [--negligible D] [--reference M] [--sweep]      (evaluate_potential on a grid: treecode vs direct)
@@ -33,6 +35,7 @@
 #include "bem/potential_evaluation.hpp"
 #include "bem/surface_gradient.hpp"
 #include "core/memory.hpp"
+#include "geometry/mesh_preparation.hpp"
 #include "geometry/primitive_meshes.hpp"
 #include "tests/support/closed_forms.hpp"
 
@@ -95,6 +98,17 @@ Problem box(double faces) {
   const Eigen::MatrixX3d& c = p.mesh.face_centroids();
   for (Eigen::Index f = 0; f < c.rows(); ++f)  // middle of the top wall, both sides
     if (std::abs(c(f, 0)) < p.h0 && std::abs(c(f, 1)) < p.h0 && c(f, 2) > 0) p.probe_faces.push_back(f);
+  return p;
+}
+
+/// A mesh file used as the solver mesh as it is (read, repaired and oriented like the
+/// `thickness` command's input, not refined), with characteristic length h0: for the cost of
+/// meshes the generators do not make, such as the remeshed tessellations of CAD exports
+/// (`thickness --solver-output mesh.ply` writes one).
+Problem from_file(const std::string& path, double h0) {
+  Problem p;
+  p.mesh = geometry::prepare_mesh_file(path).mesh;
+  p.h0 = h0;
   return p;
 }
 
@@ -374,10 +388,15 @@ int main(int argc, char** argv) {
     return 2;
   }
   const std::string shape = argv[1];
-  const double faces = std::atof(argv[2]);
+  const bool from_mesh_file = shape == "file";
+  if (from_mesh_file && argc < 4) {
+    std::fprintf(stderr, "usage: bench_fast_path file MESH H0 [dense|hmatrix|both] [options]\n");
+    return 2;
+  }
+  const double faces = from_mesh_file ? 0.0 : std::atof(argv[2]);
   std::string solver = "hmatrix";
   bem::HMatrixSolverOptions options;
-  for (int i = 3; i < argc; ++i) {
+  for (int i = from_mesh_file ? 4 : 3; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "dense" || a == "hmatrix" || a == "both") solver = a;
     else if (a == "--tolerance" && i + 1 < argc) options.tolerance = std::atof(argv[++i]);
@@ -394,7 +413,10 @@ int main(int argc, char** argv) {
     }
   }
   const auto t0 = Clock::now();
-  const Problem p = shape == "sphere" ? sphere(faces) : shape == "plate" ? plate(faces) : box(faces);
+  const Problem p = from_mesh_file    ? from_file(argv[2], std::atof(argv[3]))
+                    : shape == "sphere" ? sphere(faces)
+                    : shape == "plate"  ? plate(faces)
+                                        : box(faces);
   const double mesh_seconds = seconds(t0);
   const std::vector<std::string> solvers =
       solver == "both" ? std::vector<std::string>{"dense", "hmatrix"} : std::vector<std::string>{solver};
