@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <numbers>
+#include <vector>
 
 #include "bem/gauss_legendre.hpp"
 #include "bem/laplace_kernel.hpp"
@@ -71,6 +72,25 @@ void graded_gauss(double start, double end, double w0, Visit&& visit, Stop&& sto
     width = std::min(width * piece_growth, max_piece_width);
   }
 }
+
+/// The nodes and weights of graded_gauss, collected for evaluation as arrays.
+struct GradedNodes {
+  std::vector<double> nodes, weights;
+  void clear() {
+    nodes.clear();
+    weights.clear();
+  }
+  template <class Stop>
+  void append(double start, double end, double w0, Stop&& stop) {
+    graded_gauss(
+        start, end, w0,
+        [&](double s, double w) {
+          nodes.push_back(s);
+          weights.push_back(w);
+        },
+        stop);
+  }
+};
 
 /// Edge P1 → P2 in plane coordinates centred at x': unit direction u, foot of the
 /// perpendicular F = P1 − t1 u, abscissae t1 < t2 of the ends, distance p = |F| and the
@@ -234,13 +254,47 @@ PanelIntegrals polar_panel_integrals(const Kernel& kernel, const Panel& panel,
       return kappa * delta > negligible_exponent;
     };
     const double v1 = std::asinh(E.t1 / p), v2 = std::asinh(E.t2 / p);
+    thread_local GradedNodes graded;
+    graded.clear();
     if (v1 < 0.0 && v2 > 0.0) {
-      graded_gauss(0.0, v2, first_width(0.0), visit, negligible);
-      graded_gauss(0.0, v1, first_width(0.0), visit, negligible);
+      graded.append(0.0, v2, first_width(0.0), negligible);
+      graded.append(0.0, v1, first_width(0.0), negligible);
     } else if (v1 >= 0.0) {
-      graded_gauss(v1, v2, first_width(v1), visit, negligible);
+      graded.append(v1, v2, first_width(v1), negligible);
     } else {
-      graded_gauss(v2, v1, first_width(v2), visit, negligible);
+      graded.append(v2, v1, first_width(v2), negligible);
+    }
+    if (with_gradients) {
+      for (size_t i = 0; i < graded.nodes.size(); ++i) visit(graded.nodes[i], graded.weights[i]);
+      continue;
+    }
+    // Values only (the operator assembly): the same sums over arrays of nodes, so that the
+    // exponentials, square roots and divisions use the SIMD width.
+    constexpr Eigen::Index chunk = 128;
+    using Chunk = Eigen::Array<double, Eigen::Dynamic, 1, 0, chunk, 1>;
+    const auto count = static_cast<Eigen::Index>(graded.nodes.size());
+    for (Eigen::Index begin = 0; begin < count; begin += chunk) {
+      const Eigen::Index m = std::min(chunk, count - begin);
+      const Eigen::Map<const Eigen::ArrayXd> v(graded.nodes.data() + begin, m);
+      const Eigen::Map<const Eigen::ArrayXd> w(graded.weights.data() + begin, m);
+      const Chunk ev = v.exp();
+      const Chunk ch = 0.5 * (ev + ev.inverse());  // cosh v
+      const Chunk R = p * ch;
+      const Chunk rho = (R.square() + d * d).sqrt();
+      const Chunk dtheta = (E.sigma * w) / ch;
+      const Chunk delta = (R.square() - q2) / (rho + c);
+      if constexpr (!yukawa) {
+        sl += (dtheta * delta).sum();
+        dl += d_over_c * (dtheta * delta / rho).sum();
+      } else if (split) {
+        const Chunk e = exp_c * (-kappa * delta).exp();
+        sl -= (dtheta * e).sum() / kappa;
+        dl -= d * (dtheta * e / rho).sum();
+      } else {
+        const Chunk em = -(-kappa * delta).expm1();
+        sl += exp_c / kappa * (dtheta * em).sum();
+        dl += d_over_c * exp_c * (dtheta * (delta + c * em) / rho).sum();
+      }
     }
   }
   if constexpr (yukawa) {

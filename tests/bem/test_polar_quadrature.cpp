@@ -230,3 +230,30 @@ TEST_CASE("polar: reflection through the plane", "[polar]") {
     CHECK(a.double_layer_gradient.z() == Approx(b.double_layer_gradient.z()).epsilon(1e-13));
   }
 }
+
+TEST_CASE("polar: the values-only path (arrays of nodes) equals the path with gradients") {
+  // polar_panel_integrals without gradients sums the same nodes as arrays; both must give the
+  // same single and double layer to rounding, for targets inside, outside, on the plane and
+  // at a corner, with Laplace and with Yukawa on both sides of the split exponent.
+  const bem::Panel panel =
+      bem::make_panel(Vector3d(0, 0, 0), Vector3d(1, 0.1, 0), Vector3d(0.3, 0.8, 0.05));
+  const Vector3d targets[] = {panel.centroid,
+                              panel.centroid + 0.01 * panel.normal,
+                              panel.centroid - 0.4 * panel.normal,
+                              Vector3d(1.3, 0.9, 0.2),
+                              Vector3d(-0.2, -0.1, 0.02),
+                              panel.corners[1] + 1e-3 * panel.normal,
+                              0.5 * (panel.corners[0] + panel.corners[2]) + 0.05 * panel.normal};
+  const auto check = [&](const auto& kernel, const char* name) {
+    for (const Vector3d& x : targets) {
+      const auto values = polar_panel_integrals(kernel, panel, x, false);
+      const auto full = polar_panel_integrals(kernel, panel, x, true);
+      INFO(name << " target " << x.transpose());
+      CHECK(values.single_layer == Approx(full.single_layer).epsilon(1e-13).margin(1e-300));
+      CHECK(std::abs(values.double_layer - full.double_layer) <=
+            1e-13 * std::max(std::abs(full.double_layer), std::abs(full.single_layer)));
+    }
+  };
+  check(LaplaceKernel{}, "laplace");
+  for (const double kappa : {0.3, 3.0, 30.0}) check(YukawaKernel{kappa}, "yukawa");
+}
