@@ -30,6 +30,33 @@ double seconds_since(Clock::time_point start) {
 /// the memory estimate.
 constexpr double kTypicalRank = 16.0;
 
+using RowMajorRows = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+/// y·x for the exterior matrix in double or single precision (entries promoted to double),
+/// x row-major so that each row of y reads its columns' rows of x once for all k vectors.
+template <class Scalar>
+RowMajorRows sparse_rows_product(const SparseRowMatrixOf<Scalar>& y, const RowMajorRows& x) {
+  const Eigen::Index k = x.cols();
+  RowMajorRows out(y.rows(), k);
+#pragma omp parallel for schedule(static, 256)
+  for (Eigen::Index i = 0; i < y.rows(); ++i) {
+    double sums[4] = {0.0, 0.0, 0.0, 0.0};
+    if (k <= 4) {
+      for (typename SparseRowMatrixOf<Scalar>::InnerIterator it(y, i); it; ++it) {
+        const double v = double(it.value());
+        const double* row = x.data() + it.col() * k;
+        for (Eigen::Index c = 0; c < k; ++c) sums[c] += v * row[c];
+      }
+      for (Eigen::Index c = 0; c < k; ++c) out(i, c) = sums[c];
+    } else {
+      out.row(i).setZero();
+      for (typename SparseRowMatrixOf<Scalar>::InnerIterator it(y, i); it; ++it)
+        out.row(i) += double(it.value()) * x.row(it.col());
+    }
+  }
+  return out;
+}
+
 }  // namespace
 
 std::uint64_t hmatrix_solver_memory_estimate(Eigen::Index faces, std::uint64_t exterior_entries,
@@ -45,7 +72,7 @@ std::uint64_t hmatrix_solver_memory_estimate(Eigen::Index faces, std::uint64_t e
   const double laplace = n * entry_bytes * (2.0 * near_leaves * leaf +
                                             levels * 6.0 * 3.0 * kTypicalRank);
   // Yukawa: 12 bytes per entry (value and 32-bit column), written in place.
-  const double yukawa = 12.0 * double(exterior_entries) + 8.0 * n;
+  const double yukawa = (entry_bytes + 4.0) * double(exterior_entries) + 8.0 * n;
   const double preconditioner =
       double(ClusterBlockPreconditioner::bytes_for(faces, options.preconditioner_block));
   // The coarse space: A_c and its LU for at most kMaxClusters clusters (A E's factors are
@@ -100,17 +127,33 @@ BoundarySolution solve_transmission_hmatrix(const geometry::SurfaceMesh& mesh,
   const double interior_seconds = seconds_since(interior_start);
   report_progress(progress, "assemble exterior", 0.0);
   const auto exterior_start = Clock::now();
-  const SparseRowMatrix yukawa =
-      assemble_yukawa_near_field(panels, tree, parameters.kappa, negligible, progress, &exterior_rows);
+  // In single precision with the factors (8 bytes per entry instead of 12); one of the two
+  // is assembled, and with_exterior hands it to the code that reads it.
+  // (Initialised, not assigned: Eigen's sparse assignment copies, which would hold the
+  // matrix twice.)
+  const SparseRowMatrix yukawa_double =
+      options.single_precision ? SparseRowMatrix()
+                               : assemble_yukawa_near_field<double>(panels, tree, parameters.kappa,
+                                                                    negligible, progress, &exterior_rows);
+  const SparseRowMatrixSingle yukawa_single =
+      options.single_precision ? assemble_yukawa_near_field<float>(panels, tree, parameters.kappa,
+                                                                   negligible, progress, &exterior_rows)
+                               : SparseRowMatrixSingle();
+  const auto with_exterior = [&](const auto& use) {
+    return options.single_precision ? use(yukawa_single) : use(yukawa_double);
+  };
   const double exterior_seconds = count_seconds + seconds_since(exterior_start);
   Eigen::VectorXd half_mass(n);
   for (Eigen::Index p = 0; p < n; ++p) half_mass(p) = 0.5 * mesh.face_areas()(perm[size_t(p)]);
   report_progress(progress, "preconditioner", 0.0);
-  const ClusterBlockPreconditioner preconditioner(tree, laplace, yukawa, half_mass,
-                                                  options.preconditioner_block);
+  const ClusterBlockPreconditioner preconditioner = with_exterior([&](const auto& yukawa) {
+    return ClusterBlockPreconditioner(tree, laplace, yukawa, half_mass, options.preconditioner_block);
+  });
   std::optional<ClusterCoarseSpace> coarse;
   if (options.coarse_cluster > 0)
-    coarse.emplace(tree, laplace, yukawa, half_mass, options.coarse_cluster);
+    with_exterior([&](const auto& yukawa) {
+      coarse.emplace(tree, laplace, yukawa, half_mass, options.coarse_cluster);
+    });
 
   BoundarySolution solution;
   solution.parameters = parameters;
@@ -131,7 +174,7 @@ BoundarySolution solve_transmission_hmatrix(const geometry::SurfaceMesh& mesh,
   solution.report.operator_parts = {
       {"interior near field", hstats.dense_bytes},
       {"interior far field", hstats.low_rank_bytes},
-      {"exterior near field", stored_bytes(yukawa)},
+      {"exterior near field", with_exterior([](const auto& yukawa) { return stored_bytes(yukawa); })},
       {"preconditioner", preconditioner.bytes() + (coarse ? coarse->bytes() : 0)}};
   for (const auto& [part, bytes] : solution.report.operator_parts)
     solution.report.operator_bytes += bytes;
@@ -153,7 +196,8 @@ BoundarySolution solve_transmission_hmatrix(const geometry::SurfaceMesh& mesh,
     laplace.multiply_add(densities, y.topRows(n));
     // A row-major right-hand side lets the sparse product read each row once for all k.
     const RowMajorMatrix x_rows = x;
-    const RowMajorMatrix exterior = yukawa * x_rows;
+    const RowMajorMatrix exterior =
+        with_exterior([&](const auto& yukawa) { return sparse_rows_product(yukawa, x_rows); });
     y.bottomRows(n) = half_mass.asDiagonal() * x.topRows(n) + exterior;
   };
   const auto precondition = [&](const Eigen::MatrixXd& r, Eigen::MatrixXd& z) {
@@ -173,7 +217,7 @@ BoundarySolution solve_transmission_hmatrix(const geometry::SurfaceMesh& mesh,
   for (Eigen::Index p = 0; p < n; ++p)
     g.row(n + p) = mesh.face_normals().row(perm[size_t(p)]) / parameters.a_tilde;
   Eigen::MatrixXd b = Eigen::MatrixXd::Zero(2 * n, 3);
-  b.bottomRows(n) = yukawa * g;
+  b.bottomRows(n) = with_exterior([&](const auto& yukawa) { return sparse_rows_product(yukawa, g); });
   Eigen::MatrixXd x = Eigen::MatrixXd::Zero(2 * n, 3);
   std::array<int, 3> reached{0, 0, 0};
   const std::vector<GmresResult> results = gmres_columns(

@@ -5,9 +5,10 @@
 
 namespace bemshape::bem {
 
+template <class Scalar>
 ClusterBlockPreconditioner::ClusterBlockPreconditioner(const ClusterTree& tree,
                                                        const HierarchicalMatrix& laplace,
-                                                       const SparseRowMatrix& yukawa,
+                                                       const SparseRowMatrixOf<Scalar>& yukawa,
                                                        const Eigen::VectorXd& half_mass,
                                                        Eigen::Index block_size)
     : n_(tree.root().size()) {
@@ -32,7 +33,7 @@ ClusterBlockPreconditioner::ClusterBlockPreconditioner(const ClusterTree& tree,
       for (Eigen::Index r = 0; r < s; ++r) {
         local(r, r) -= half_mass(begin + r);
         local(s + r, r) += half_mass(begin + r);
-        for (SparseRowMatrix::InnerIterator it(yukawa, begin + r); it; ++it) {
+        for (typename SparseRowMatrixOf<Scalar>::InnerIterator it(yukawa, begin + r); it; ++it) {
           const Eigen::Index c = it.col();
           if (c >= begin && c < end)
             local(s + r, c - begin) += it.value();
@@ -45,6 +46,15 @@ ClusterBlockPreconditioner::ClusterBlockPreconditioner(const ClusterTree& tree,
     }
   }
 }
+
+template ClusterBlockPreconditioner::ClusterBlockPreconditioner(const ClusterTree&,
+                                                                const HierarchicalMatrix&,
+                                                                const SparseRowMatrixOf<double>&,
+                                                                const Eigen::VectorXd&, Eigen::Index);
+template ClusterBlockPreconditioner::ClusterBlockPreconditioner(const ClusterTree&,
+                                                                const HierarchicalMatrix&,
+                                                                const SparseRowMatrixOf<float>&,
+                                                                const Eigen::VectorXd&, Eigen::Index);
 
 void ClusterBlockPreconditioner::apply(const Eigen::MatrixXd& r, Eigen::MatrixXd& z) const {
   z.resize(r.rows(), r.cols());

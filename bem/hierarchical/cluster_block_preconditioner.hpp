@@ -36,9 +36,10 @@ class ClusterBlockPreconditioner {
   static constexpr Eigen::Index kDefaultBlockSize = 256;
 
   /// `laplace`: the H-matrix of [−K0 | V0]; `yukawa`: [−Kκ | Vκ] (N × 2N); `half_mass`:
-  /// ½|T| per panel; all in tree order.
+  /// ½|T| per panel; all in tree order. Scalar: double or float (instantiated for both).
+  template <class Scalar>
   ClusterBlockPreconditioner(const ClusterTree& tree, const HierarchicalMatrix& laplace,
-                             const SparseRowMatrix& yukawa, const Eigen::VectorXd& half_mass,
+                             const SparseRowMatrixOf<Scalar>& yukawa, const Eigen::VectorXd& half_mass,
                              Eigen::Index block_size = kDefaultBlockSize);
 
   /// z = M⁻¹ r for each column r = (r_φ, r_q) of `r` (2N × k, tree order); one pass over

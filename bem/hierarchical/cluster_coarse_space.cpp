@@ -4,8 +4,9 @@
 
 namespace bemshape::bem {
 
+template <class Scalar>
 ClusterCoarseSpace::ClusterCoarseSpace(const ClusterTree& tree, const HierarchicalMatrix& laplace,
-                                       const SparseRowMatrix& yukawa,
+                                       const SparseRowMatrixOf<Scalar>& yukawa,
                                        const Eigen::VectorXd& half_mass,
                                        Eigen::Index cluster_size)
     : laplace_(laplace), n_(tree.root().size()), half_mass_(half_mass) {
@@ -27,7 +28,7 @@ ClusterCoarseSpace::ClusterCoarseSpace(const ClusterTree& tree, const Hierarchic
 #pragma omp parallel for schedule(static)
     for (Eigen::Index i = 0; i < n_; ++i) {
       std::map<std::int32_t, double> sums;
-      for (SparseRowMatrix::InnerIterator it(yukawa, i); it; ++it) {
+      for (typename SparseRowMatrixOf<Scalar>::InnerIterator it(yukawa, i); it; ++it) {
         const Eigen::Index c = it.col();
         sums[std::int32_t(c < n_ ? cluster_of_[size_t(c)] : m + cluster_of_[size_t(c - n_)])] +=
             it.value();
@@ -57,6 +58,13 @@ ClusterCoarseSpace::ClusterCoarseSpace(const ClusterTree& tree, const Hierarchic
   }
   lu_.compute(matrix_);
 }
+
+template ClusterCoarseSpace::ClusterCoarseSpace(const ClusterTree&, const HierarchicalMatrix&,
+                                                const SparseRowMatrixOf<double>&,
+                                                const Eigen::VectorXd&, Eigen::Index);
+template ClusterCoarseSpace::ClusterCoarseSpace(const ClusterTree&, const HierarchicalMatrix&,
+                                                const SparseRowMatrixOf<float>&,
+                                                const Eigen::VectorXd&, Eigen::Index);
 
 Eigen::MatrixXd ClusterCoarseSpace::coarse_solve(const Eigen::MatrixXd& r) const {
   const Eigen::Index m = clusters_;

@@ -53,9 +53,11 @@ class ClusterCoarseSpace {
   /// `laplace`: the H-matrix of [−K0 | V0] (kept by reference: it must outlive this);
   /// `yukawa`: [−Kκ | Vκ] (N × 2N); `half_mass`: ½|T| per panel; all in tree order. The
   /// clusters are the largest with at most `cluster_size` panels, or with twice, four times …
-  /// that many if there would be more than kMaxClusters.
+  /// that many if there would be more than kMaxClusters. Scalar: double or float
+  /// (instantiated for both).
+  template <class Scalar>
   ClusterCoarseSpace(const ClusterTree& tree, const HierarchicalMatrix& laplace,
-                     const SparseRowMatrix& yukawa, const Eigen::VectorXd& half_mass,
+                     const SparseRowMatrixOf<Scalar>& yukawa, const Eigen::VectorXd& half_mass,
                      Eigen::Index cluster_size = kDefaultClusterSize);
 
   /// z = M⁻¹ r = P y + B (r − A P y), y = A_c⁻¹ Pᵀ r, for each column r = (r_φ, r_q) of

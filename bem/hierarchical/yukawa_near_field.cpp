@@ -92,10 +92,12 @@ Eigen::VectorX<Eigen::Index> yukawa_near_field_row_sizes(const std::vector<Panel
   return room;
 }
 
-SparseRowMatrix assemble_yukawa_near_field(const std::vector<Panel>& panels,
-                                           const ClusterTree& tree, double kappa,
-                                           double negligible, const ProgressCallback& progress,
-                                           const Eigen::VectorX<Eigen::Index>* row_sizes) {
+template <class Scalar>
+SparseRowMatrixOf<Scalar> assemble_yukawa_near_field(const std::vector<Panel>& panels,
+                                                     const ClusterTree& tree, double kappa,
+                                                     double negligible,
+                                                     const ProgressCallback& progress,
+                                                     const Eigen::VectorX<Eigen::Index>* row_sizes) {
   const auto& perm = tree.permutation();
   const Eigen::Index n = tree.root().size();
   const Cutoff cutoff(panels, kappa, negligible);
@@ -113,11 +115,11 @@ SparseRowMatrix assemble_yukawa_near_field(const std::vector<Panel>& panels,
                         std::to_string(std::numeric_limits<std::int32_t>::max()) +
                         "); use a coarser mesh (larger --max-edge)");
   // The exact size against the memory left now (the interior H-matrix is already held).
-  require_memory(12 * std::uint64_t(room.sum()) + 8 * std::uint64_t(n),
+  require_memory((sizeof(Scalar) + 4) * std::uint64_t(room.sum()) + 8 * std::uint64_t(n),
                  "the exterior near field of " + std::to_string(n) + " faces (" +
                      std::to_string(room.sum()) + " entries)",
                  "use a coarser mesh (larger --max-edge)");
-  SparseRowMatrix y(n, 2 * n);
+  SparseRowMatrixOf<Scalar> y(n, 2 * n);
   try {
     y.reserve(room);  // uncompressed: row i owns room(i) slots from outerIndexPtr()[i]
   } catch (const std::bad_alloc&) {
@@ -126,7 +128,7 @@ SparseRowMatrix assemble_yukawa_near_field(const std::vector<Panel>& panels,
   GalerkinOperators<YukawaKernel> yukawa(YukawaKernel{kappa}, panels);
   yukawa.tabulate_touching_pairs();
   std::int32_t* const columns = y.innerIndexPtr();
-  double* const values = y.valuePtr();
+  Scalar* const values = y.valuePtr();
   const std::int32_t* const row_start = y.outerIndexPtr();
   std::int32_t* const row_size = y.innerNonZeroPtr();
 
@@ -148,7 +150,7 @@ SparseRowMatrix assemble_yukawa_near_field(const std::vector<Panel>& panels,
         candidate_panels(test, tree, cutoff.reach, near, stack);
         single.clear();
         std::int32_t* const row_columns = columns + row_start[i];
-        double* const row_values = values + row_start[i];
+        Scalar* const row_values = values + row_start[i];
         std::int32_t count = 0;  // at most two per kept panel: within room(i)
         kept.clear();
         faces.clear();
@@ -164,14 +166,14 @@ SparseRowMatrix assemble_yukawa_near_field(const std::vector<Panel>& panels,
           const auto& e = entries[t];
           if (e.double_layer != 0.0) {
             row_columns[count] = static_cast<std::int32_t>(j);
-            row_values[count++] = -e.double_layer;
+            row_values[count++] = static_cast<Scalar>(-e.double_layer);
           }
           if (e.single_layer != 0.0)
             single.emplace_back(static_cast<std::int32_t>(n + j), e.single_layer);
         }
         for (const auto& [c, v] : single) {
           row_columns[count] = c;
-          row_values[count++] = v;
+          row_values[count++] = static_cast<Scalar>(v);
         }
         row_size[i] = count;
       } catch (const std::bad_alloc&) {
@@ -192,5 +194,12 @@ SparseRowMatrix assemble_yukawa_near_field(const std::vector<Panel>& panels,
   // GB at 50000 faces, measured). Products and iterators skip the unused slots.
   return y;
 }
+
+template SparseRowMatrixOf<double> assemble_yukawa_near_field<double>(
+    const std::vector<Panel>&, const ClusterTree&, double, double, const ProgressCallback&,
+    const Eigen::VectorX<Eigen::Index>*);
+template SparseRowMatrixOf<float> assemble_yukawa_near_field<float>(
+    const std::vector<Panel>&, const ClusterTree&, double, double, const ProgressCallback&,
+    const Eigen::VectorX<Eigen::Index>*);
 
 }  // namespace bemshape::bem

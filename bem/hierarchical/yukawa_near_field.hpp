@@ -25,7 +25,13 @@ namespace bemshape::bem {
 /// 32-bit column indices: 12 bytes per stored entry instead of 16. The entries are O(N)
 /// (about 1300 per row at the default element size), so 2^31 − 1 of them is ample up to
 /// 10⁶ faces; assembly refuses a matrix with more.
-using SparseRowMatrix = Eigen::SparseMatrix<double, Eigen::RowMajor, std::int32_t>;
+template <class Scalar>
+using SparseRowMatrixOf = Eigen::SparseMatrix<Scalar, Eigen::RowMajor, std::int32_t>;
+using SparseRowMatrix = SparseRowMatrixOf<double>;
+/// The H-matrix solver's exterior matrix when its factors are in single precision
+/// (tolerance ≥ 1e−6): 8 bytes per entry instead of 12. The entries' rounding, 6e−8
+/// relative, is that of the single-precision near field and factors of the interior part.
+using SparseRowMatrixSingle = SparseRowMatrixOf<float>;
 
 /// The gap beyond which Yukawa entries attenuated below `negligible` are dropped,
 /// g* = −ln(negligible)/κ [model units].
@@ -51,11 +57,16 @@ Eigen::VectorX<Eigen::Index> yukawa_near_field_row_sizes(const std::vector<Panel
 /// `row_sizes`: yukawa_near_field_row_sizes of the same arguments, if already counted.
 /// Bytes a matrix from assemble_yukawa_near_field holds: a value and a 32-bit column per
 /// slot (used or not) and the row offsets.
-inline std::uint64_t stored_bytes(const SparseRowMatrix& y) {
-  return 12ull * std::uint64_t(y.data().allocatedSize()) + 8ull * std::uint64_t(y.outerSize());
+template <class Scalar>
+std::uint64_t stored_bytes(const SparseRowMatrixOf<Scalar>& y) {
+  return (sizeof(Scalar) + 4ull) * std::uint64_t(y.data().allocatedSize()) +
+         8ull * std::uint64_t(y.outerSize());
 }
 
-SparseRowMatrix assemble_yukawa_near_field(
+/// `Scalar`: double, or float for the single-precision matrix (each entry is computed in
+/// double precision and rounded once when stored).
+template <class Scalar = double>
+SparseRowMatrixOf<Scalar> assemble_yukawa_near_field(
     const std::vector<Panel>& panels, const ClusterTree& tree, double kappa,
     double negligible = YukawaAttenuation::negligible, const ProgressCallback& progress = {},
     const Eigen::VectorX<Eigen::Index>* row_sizes = nullptr);

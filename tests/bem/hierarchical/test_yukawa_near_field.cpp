@@ -69,4 +69,19 @@ TEST_CASE("Yukawa near field: every nonzero entry of the dense operator, nothing
     wrong += sizes(i) < y.row(i).nonZeros();
   }
   CHECK(wrong == 0);
+
+  // The single-precision matrix of the H-matrix solver: the same slots, each value the
+  // double one rounded once to float.
+  const bem::SparseRowMatrixSingle y_single = bem::assemble_yukawa_near_field<float>(panels, tree, kappa);
+  REQUIRE(y_single.nonZeros() == y.nonZeros());
+  CHECK(bem::stored_bytes(y_single) == bem::stored_bytes(y) - 4 * std::uint64_t(y.data().allocatedSize()));
+  Eigen::Index rounded_differently = 0;
+  for (Eigen::Index i = 0; i < n; ++i) {
+    bem::SparseRowMatrix::InnerIterator it(y, i);
+    bem::SparseRowMatrixSingle::InnerIterator its(y_single, i);
+    for (; it && its; ++it, ++its)
+      rounded_differently += it.col() != its.col() || static_cast<float>(it.value()) != its.value();
+    rounded_differently += bool(it) != bool(its);
+  }
+  CHECK(rounded_differently == 0);
 }
