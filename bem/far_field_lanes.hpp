@@ -26,6 +26,7 @@
 #include "bem/panel_arrays.hpp"
 #include "bem/panel_integrals.hpp"
 #include "bem/triangle_quadrature.hpp"
+#include "bem/yukawa_kernel.hpp"
 
 namespace bemshape::bem {
 
@@ -89,11 +90,11 @@ struct FarFieldEntries {
 };
 
 /// V = |T_j||T_k|/(4π) Σ_q w_q g(r_q) and K = |T_j||T_k|/(4π) d Σ_q w_q h(r_q) of the pairs by
-/// `rule` on the trial panels, in every lane, with terms(r², g, h) giving a kernel's
-/// g = E(r)/r and h = E(r)(1 + κr)/r³ (E = 1 for Laplace, e^{−κr} for Yukawa).
-template <class Terms>
+/// `rule` on the trial panels, in every lane, with the kernel's g = E(r)/r and
+/// h = E(r)(1 + κr)/r³ (E = 1 for Laplace, e^{−κr} for Yukawa; radial_kernel_terms).
+template <class Kernel>
 FarFieldEntries far_field_sums(const PanelLanes& test, const PanelLanes& trial,
-                               const TriangleRule& rule, const Terms& terms) {
+                               const TriangleRule& rule, const Kernel& kernel) {
   // x − a_k and d = (x − a_k)·n_k per lane.
   const FarFieldLanes ox = test.centroid[0] - trial.corner[0];
   const FarFieldLanes oy = test.centroid[1] - trial.corner[1];
@@ -106,22 +107,18 @@ FarFieldEntries far_field_sums(const PanelLanes& test, const PanelLanes& trial,
     const FarFieldLanes rx = ox - xi * trial.edge1[0] - eta * trial.edge2[0];
     const FarFieldLanes ry = oy - xi * trial.edge1[1] - eta * trial.edge2[1];
     const FarFieldLanes rz = oz - xi * trial.edge1[2] - eta * trial.edge2[2];
-    terms(FarFieldLanes(rx.square() + ry.square() + rz.square()), g, h);
+    radial_kernel_terms(kernel, FarFieldLanes(rx.square() + ry.square() + rz.square()), g, h);
     sum_g += w * g;
     sum_h += w * h;
   }
-  const FarFieldLanes scale = LaplaceKernel::inv_four_pi * test.area * trial.area;
+  const FarFieldLanes scale = Kernel::inv_four_pi * test.area * trial.area;
   return {scale * sum_g, scale * d * sum_h};
 }
 
 /// The Laplace far-field entries of the pairs by `rule`, in every lane.
 inline FarFieldEntries laplace_far_field_rule(const PanelLanes& test, const PanelLanes& trial,
                                               const TriangleRule& rule) {
-  return far_field_sums(test, trial, rule,
-                        [](const FarFieldLanes& r2, FarFieldLanes& g, FarFieldLanes& h) {
-                          g = r2.rsqrt();
-                          h = g.cube();
-                        });
+  return far_field_sums(test, trial, rule, LaplaceKernel{});
 }
 
 /// The Laplace far-field entries of the kFarFieldLanes pairs, for the pairs at least
@@ -167,13 +164,7 @@ inline unsigned laplace_far_field_lanes(const PanelLanes& test, const PanelLanes
 /// r_q and d as for the Laplace far field above. κ [1/model units].
 inline FarFieldEntries yukawa_attenuated_lanes(const PanelLanes& test, const PanelLanes& trial,
                                                double kappa, const TriangleRule& rule) {
-  return far_field_sums(test, trial, rule,
-                        [kappa](const FarFieldLanes& r2, FarFieldLanes& g, FarFieldLanes& h) {
-                          const FarFieldLanes inverse_r = r2.rsqrt();
-                          const FarFieldLanes r = r2 * inverse_r;
-                          g = (-kappa * r).exp() * inverse_r;
-                          h = g * (1.0 + kappa * r) * inverse_r.square();
-                        });
+  return far_field_sums(test, trial, rule, YukawaKernel{kappa});
 }
 
 }  // namespace bemshape::bem

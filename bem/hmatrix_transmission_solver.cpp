@@ -37,21 +37,14 @@ using RowMajorRows = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen
 template <class Scalar>
 RowMajorRows sparse_rows_product(const SparseRowMatrixOf<Scalar>& y, const RowMajorRows& x) {
   const Eigen::Index k = x.cols();
-  RowMajorRows out(y.rows(), k);
+  RowMajorRows out = RowMajorRows::Zero(y.rows(), k);
 #pragma omp parallel for schedule(static, 256)
   for (Eigen::Index i = 0; i < y.rows(); ++i) {
-    double sums[4] = {0.0, 0.0, 0.0, 0.0};
-    if (k <= 4) {
-      for (typename SparseRowMatrixOf<Scalar>::InnerIterator it(y, i); it; ++it) {
-        const double v = double(it.value());
-        const double* row = x.data() + it.col() * k;
-        for (Eigen::Index c = 0; c < k; ++c) sums[c] += v * row[c];
-      }
-      for (Eigen::Index c = 0; c < k; ++c) out(i, c) = sums[c];
-    } else {
-      out.row(i).setZero();
-      for (typename SparseRowMatrixOf<Scalar>::InnerIterator it(y, i); it; ++it)
-        out.row(i) += double(it.value()) * x.row(it.col());
+    double* const sums = out.data() + i * k;
+    for (typename SparseRowMatrixOf<Scalar>::InnerIterator it(y, i); it; ++it) {
+      const double v = double(it.value());
+      const double* const row = x.data() + it.col() * k;
+      for (Eigen::Index c = 0; c < k; ++c) sums[c] += v * row[c];
     }
   }
   return out;
@@ -71,7 +64,8 @@ std::uint64_t hmatrix_solver_memory_estimate(Eigen::Index faces, std::uint64_t e
   const double entry_bytes = options.single_precision ? 4.0 : 8.0;
   const double laplace = n * entry_bytes * (2.0 * near_leaves * leaf +
                                             levels * 6.0 * 3.0 * kTypicalRank);
-  // Yukawa: 12 bytes per entry (value and 32-bit column), written in place.
+  // Yukawa: a value (single or double precision) and a 32-bit column per entry, written in
+  // place.
   const double yukawa = (entry_bytes + 4.0) * double(exterior_entries) + 8.0 * n;
   const double preconditioner =
       double(ClusterBlockPreconditioner::bytes_for(faces, options.preconditioner_block));

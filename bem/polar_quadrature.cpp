@@ -202,26 +202,12 @@ PanelIntegrals polar_panel_integrals(const Kernel& kernel, const Panel& panel,
       swept_direction += Vec2(de.y(), -de.x());
     }
     const double p = E.p;
-    auto visit = [&](double v, double w) {
+    // The in-plane gradients at one node (the values are summed over all nodes below).
+    auto visit_gradients = [&](double v, double w) {
       const double ch = std::cosh(v);
       const double R = p * ch;
       const double rho = length2d(R, d);
       const double dtheta = E.sigma * w / ch;
-      // δ = ρ' − c without cancellation (ρ'² − c² = R² − q²).
-      const double delta = (R * R - q2) / (rho + c);
-      if constexpr (!yukawa) {
-        sl += dtheta * delta;
-        dl += dtheta * d_over_c * delta / rho;
-      } else if (split) {
-        const double e = exp_c * std::exp(-kappa * delta);
-        sl -= dtheta * e / kappa;
-        dl -= dtheta * d * e / rho;
-      } else {
-        const double em = -std::expm1(-kappa * delta);
-        sl += dtheta * exp_c * em / kappa;
-        dl += dtheta * d_over_c * exp_c * (delta + c * em) / rho;
-      }
-      if (!with_gradients) return;
       const double t = p * std::sinh(v);
       const Vec2 dir = (E.foot + t * E.u) / R;
       const double rho3 = rho * rho * rho;
@@ -264,12 +250,11 @@ PanelIntegrals polar_panel_integrals(const Kernel& kernel, const Panel& panel,
     } else {
       graded.append(v2, v1, first_width(v2), negligible);
     }
-    if (with_gradients) {
-      for (size_t i = 0; i < graded.nodes.size(); ++i) visit(graded.nodes[i], graded.weights[i]);
-      continue;
-    }
-    // Values only (the operator assembly): the same sums over arrays of nodes, so that the
-    // exponentials, square roots and divisions use the SIMD width.
+    if (with_gradients)
+      for (size_t i = 0; i < graded.nodes.size(); ++i)
+        visit_gradients(graded.nodes[i], graded.weights[i]);
+    // The values, over arrays of nodes, so that the exponentials, square roots and divisions
+    // use the SIMD width.
     constexpr Eigen::Index chunk = 128;
     using Chunk = Eigen::Array<double, Eigen::Dynamic, 1, 0, chunk, 1>;
     const auto count = static_cast<Eigen::Index>(graded.nodes.size());
@@ -282,6 +267,7 @@ PanelIntegrals polar_panel_integrals(const Kernel& kernel, const Panel& panel,
       const Chunk R = p * ch;
       const Chunk rho = (R.square() + d * d).sqrt();
       const Chunk dtheta = (E.sigma * w) / ch;
+      // δ = ρ' − c without cancellation (ρ'² − c² = R² − q²).
       const Chunk delta = (R.square() - q2) / (rho + c);
       if constexpr (!yukawa) {
         sl += (dtheta * delta).sum();

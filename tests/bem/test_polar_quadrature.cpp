@@ -231,10 +231,11 @@ TEST_CASE("polar: reflection through the plane", "[polar]") {
   }
 }
 
-TEST_CASE("polar: the values-only path (arrays of nodes) equals the path with gradients") {
-  // polar_panel_integrals without gradients sums the same nodes as arrays; both must give the
-  // same single and double layer to rounding, for targets inside, outside, on the plane and
-  // at a corner, with Laplace and with Yukawa on both sides of the split exponent.
+TEST_CASE("polar: the values do not depend on whether gradients are asked for") {
+  // The values are summed over arrays of nodes in both cases and the gradients node by node;
+  // asking for gradients must leave the single and double layer as they are, for targets
+  // inside, outside, on the plane and at a corner, with Laplace and with Yukawa on both sides
+  // of the split exponent.
   const bem::Panel panel =
       bem::make_panel(Vector3d(0, 0, 0), Vector3d(1, 0.1, 0), Vector3d(0.3, 0.8, 0.05));
   const Vector3d targets[] = {panel.centroid,
