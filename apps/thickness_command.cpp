@@ -227,6 +227,7 @@ nlohmann::json report_json(const ThicknessOptions& options, double h0, const Bou
         {"unknowns", run.solution.report.unknowns},
         {"iterations", run.solution.report.iterations},
         {"residual", run.solution.report.residual},
+        {"preconditioned_residual", run.solution.report.preconditioned_residual},
         {"operator_mb", double(run.solution.report.operator_bytes) / 1e6},
         {"compression", run.solution.report.compression},
         {"assembly_stages", assembly_stages},

@@ -23,6 +23,10 @@ struct SolveReport {
   Eigen::Index unknowns = 0;      ///< size of the linear system
   int iterations = 0;             ///< Krylov iterations (0 for a direct solve)
   double residual = 0.0;          ///< max over right-hand sides of ‖A x − b‖ / ‖b‖
+  /// max over right-hand sides of ‖M⁻¹(A x − b)‖ / ‖M⁻¹b‖ for a left-preconditioned Krylov
+  /// solve, the quantity its tolerance bounds (an estimate of the solution's relative
+  /// error); equal to `residual` otherwise
+  double preconditioned_residual = 0.0;
   double assembly_seconds = 0.0;  ///< wall time of the operator assembly
   double solve_seconds = 0.0;     ///< wall time of the factorisation and solves
   /// Stages of the assembly, in order (name, wall time [s]); empty for the dense path, whose

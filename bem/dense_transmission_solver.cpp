@@ -116,7 +116,7 @@ BoundarySolution solve_transmission_dense(const geometry::SurfaceMesh& mesh,
     const double norm_b = b.col(i).norm();
     if (norm_b > 0.0) residual = std::max(residual, (a * z.col(i) - b.col(i)).norm() / norm_b);
   }
-  solution.report.residual = residual;
+  solution.report.residual = solution.report.preconditioned_residual = residual;
   solution.report.solve_seconds = seconds_since(solve_start);
   if (!(residual <= kMaxDirectResidual)) {
     std::ostringstream msg;

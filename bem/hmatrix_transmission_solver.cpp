@@ -206,6 +206,7 @@ BoundarySolution solve_transmission_hmatrix(const geometry::SurfaceMesh& mesh,
   gmres_options.tolerance = options.tolerance;
   gmres_options.restart = options.restart;
   gmres_options.max_iterations = options.max_iterations;
+  gmres_options.side = options.preconditioner_side;
   // b = (0, Vκ g) per direction i: the single-layer half of Y applied to g = n_i/ã.
   RowMajorMatrix g = RowMajorMatrix::Zero(2 * n, 3);
   for (Eigen::Index p = 0; p < n; ++p)
@@ -228,10 +229,13 @@ BoundarySolution solve_transmission_hmatrix(const geometry::SurfaceMesh& mesh,
     const GmresResult& result = results[size_t(i)];
     solution.report.iterations = std::max(solution.report.iterations, result.iterations);
     solution.report.residual = std::max(solution.report.residual, result.residual);
+    solution.report.preconditioned_residual =
+        std::max(solution.report.preconditioned_residual, result.preconditioned_residual);
     if (!result.converged || !x.col(i).allFinite()) {
       std::ostringstream msg;
       msg << "hierarchical-matrix BEM solve (direction " << i + 1 << "): GMRES reached relative "
-          << "residual " << result.residual << " after " << result.iterations
+          << (options.preconditioner_side == PreconditionerSide::left ? "preconditioned " : "")
+          << "residual " << result.preconditioned_residual << " after " << result.iterations
           << " iterations, tolerance " << options.tolerance
           << "; check the mesh for badly shaped faces or use --solver dense on a coarser mesh";
       throw NumericalError(msg.str());

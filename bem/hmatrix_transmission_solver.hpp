@@ -22,13 +22,16 @@
 #include "bem/hierarchical/cluster_block_preconditioner.hpp"
 #include "bem/hierarchical/cluster_coarse_space.hpp"
 #include "bem/hierarchical/cluster_tree.hpp"
+#include "bem/hierarchical/gmres.hpp"
 #include "core/progress.hpp"
 #include "geometry/surface_mesh.hpp"
 
 namespace bemshape::bem {
 
 struct HMatrixSolverOptions {
-  /// Relative residual ‖b − A x‖/‖b‖ GMRES must reach (`--tolerance`).
+  /// Relative residual GMRES must reach (`--tolerance`), preconditioned on the side
+  /// `preconditioner_side` names: by default ‖M⁻¹(b − A x)‖/‖M⁻¹b‖, which tracks the
+  /// relative error of the densities φ and q (see preconditioner_side).
   double tolerance = 1e-6;
   /// ε of the cross approximation: two digits below the GMRES tolerance, so compression
   /// errors stay below what the solve leaves.
@@ -50,6 +53,14 @@ struct HMatrixSolverOptions {
   Eigen::Index coarse_cluster = ClusterCoarseSpace::kDefaultClusterSize;
   int restart = 60;
   int max_iterations = 600;
+  /// The preconditioner's side in GMRES (bem/hierarchical/gmres.hpp), which sets what
+  /// `tolerance` bounds. Left: the preconditioned residual, an estimate of the densities'
+  /// relative error because the two-level preconditioner is close to A⁻¹. Right: the
+  /// residual of the equations, which lets q's error grow with the condition number of the
+  /// first-kind single layer (about 30 × the residual on a 5120-face ball, 1.2e−5 against the
+  /// dense path at 1e−6 on 2000 faces, against 1.0e−6 preconditioned on the left; the
+  /// left side takes 14 iterations there instead of 11; docs/benchmarks.md).
+  PreconditionerSide preconditioner_side = PreconditionerSide::left;
   /// Upper bound on the memory the solver may use [bytes]; 0 = what the machine has.
   std::uint64_t max_memory_bytes = 0;
 };

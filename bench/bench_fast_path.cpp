@@ -3,7 +3,7 @@
 // solves with the dense and/or the hierarchical-matrix path and prints one JSON line per run:
 //
 //   bench_fast_path sphere|plate|box FACES [dense|hmatrix|both] [--tolerance T] [--aca E]
-//                   [--leaf L] [--eta H] [--single|--double] [--block B] [--coarse C]
+//                   [--leaf L] [--eta H] [--single|--double] [--block B] [--coarse C] [--right]
 //   bench_fast_path file MESH H0 [dense|hmatrix|both] [options as above]
 //                   (a mesh file as the solver mesh, no refinement; no closed form, error 0)
 //   bench_fast_path entry-costs FACES     (where a row of the operators spends its time)
@@ -403,6 +403,7 @@ int main(int argc, char** argv) {
     else if (a == "--aca" && i + 1 < argc) options.aca_tolerance = std::atof(argv[++i]);
     else if (a == "--leaf" && i + 1 < argc) options.leaf_size = std::atol(argv[++i]);
     else if (a == "--eta" && i + 1 < argc) options.eta = std::atof(argv[++i]);
+    else if (a == "--right") options.preconditioner_side = bem::PreconditionerSide::right;
     else if (a == "--single") options.single_precision = true;
     else if (a == "--double") options.single_precision = false;
     else if (a == "--block" && i + 1 < argc) options.preconditioner_block = std::atol(argv[++i]);

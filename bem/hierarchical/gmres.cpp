@@ -7,68 +7,113 @@
 namespace bemshape::bem {
 namespace {
 
-/// An Arnoldi vector shorter than this fraction of A·z before orthogonalisation is a
-/// breakdown: A·z lies in the Krylov space already (to rounding).
+/// An Arnoldi vector shorter than this fraction of its operator image before
+/// orthogonalisation is a breakdown: the image lies in the Krylov space already (to rounding).
 constexpr double kBreakdown = 1e-14;
 
-/// One column's restarted GMRES, advanced one operator application at a time by the
-/// driver below. Each application is of one of three kinds:
-///   residual — w = A x, then r = b − w starts a cycle (or ends the solve);
-///   arnoldi  — w = A M⁻¹ v_k, one Arnoldi step of the cycle;
-///   update   — x += M⁻¹ V_k y_k (the cycle's correction), then w = A x as for residual.
+/// Which operator a column wants applied next, if any.
+enum class Wants { a, m, nothing };
+
+/// One column's restarted GMRES, advanced one operator application at a time by the driver
+/// below: the column names the operator it wants (A or M⁻¹) and its input, and is handed the
+/// result. The steps, with Kₖ the Krylov basis v₀ … vₖ₋₁:
+///
+///   right preconditioning                       left preconditioning
+///   residual  r = b − A x                       residual  r = M⁻¹(b − A x)     (A, then M⁻¹)
+///   Arnoldi   w = A (M⁻¹ vₖ)    (M⁻¹, then A)   Arnoldi   w = M⁻¹(A vₖ)        (A, then M⁻¹)
+///   update    x += M⁻¹(Kₖ yₖ)   (M⁻¹)           update    x += Kₖ yₖ           (no operator)
+///
+/// The left-preconditioned run first needs M⁻¹b, the scale of its residual.
 class ColumnGmres {
  public:
-  enum class Step { residual, arnoldi, update, done };
-
   ColumnGmres(Eigen::VectorXd b, Eigen::VectorXd x, const GmresOptions& options)
-      : b_(std::move(b)), x_(std::move(x)), options_(options), m_(std::max(1, options.restart)) {
+      : b_(std::move(b)), x_(std::move(x)), options_(options), m_(std::max(1, options.restart)),
+        left_(options.side == PreconditionerSide::left) {
     norm_b_ = b_.norm();
     if (norm_b_ == 0.0) {
       x_.setZero();
       result_.converged = true;
-      step_ = Step::done;
+      wants_ = Wants::nothing;
+    } else if (left_) {
+      input_ = b_;  // M⁻¹b first
+      next_ = Next::scale;
+      wants_ = Wants::m;
     } else if (x_.isZero(0.0)) {
-      take_residual(Eigen::VectorXd::Zero(b_.size()));  // A·0 = 0: no product needed
+      true_norm_ = norm_b_;
+      start_cycle(b_);  // A·0 = 0: no product needed
+    } else {
+      request_residual();
     }
   }
 
-  Step step() const { return step_; }
-  bool wants_preconditioner() const { return step_ == Step::arnoldi || step_ == Step::update; }
+  Wants wants() const { return wants_; }
+  bool done() const { return wants_ == Wants::nothing; }
+  const Eigen::VectorXd& input() const { return input_; }
 
-  /// The vector M⁻¹ is to be applied to in this step (arnoldi, update).
-  Eigen::VectorXd preconditioner_input() const {
-    if (step_ == Step::arnoldi) return basis_.col(k_);
-    // H_k y = g_k (upper triangular after the rotations).
-    const Eigen::VectorXd y =
-        h_.topLeftCorner(k_, k_).triangularView<Eigen::Upper>().solve(g_.head(k_));
-    return basis_.leftCols(k_) * y;
-  }
-
-  /// The vector A is to be applied to, given M⁻¹ of preconditioner_input() when wanted.
-  Eigen::VectorXd operand(const Eigen::Ref<const Eigen::VectorXd>& z) {
-    if (step_ == Step::arnoldi) return z;
-    if (step_ == Step::update) {
-      x_ += z;
-      after_update_ = true;
+  /// Takes the result of the operator wants() named, applied to input(), and moves on.
+  void receive(const Eigen::Ref<const Eigen::VectorXd>& result,
+               const std::function<void(int, int, double)>& monitor, int column) {
+    switch (next_) {
+      case Next::scale:  // result = M⁻¹b
+        norm_scale_ = result.norm();
+        if (!(norm_scale_ > 0.0)) {  // M⁻¹ annihilates b (or NaN): nothing to measure against
+          true_norm_ = norm_b_;
+          finish();
+        } else if (x_.isZero(0.0)) {
+          true_norm_ = norm_b_;
+          start_cycle(result);
+        } else {
+          request_residual();
+        }
+        return;
+      case Next::residual: {  // result = A x
+        Eigen::VectorXd r = b_ - result;
+        true_norm_ = r.norm();
+        if (left_) {
+          input_ = std::move(r);
+          next_ = Next::preconditioned_residual;
+          wants_ = Wants::m;
+        } else {
+          start_cycle(r);
+        }
+        return;
+      }
+      case Next::preconditioned_residual:  // result = M⁻¹(b − A x)
+        start_cycle(result);
+        return;
+      case Next::arnoldi_operand:  // right: result = M⁻¹vₖ; left: result = A vₖ
+        input_ = result;
+        next_ = Next::arnoldi;
+        wants_ = left_ ? Wants::m : Wants::a;
+        return;
+      case Next::arnoldi:  // result = the image of vₖ
+        arnoldi(result, monitor, column);
+        return;
+      case Next::correction:  // right only: result = M⁻¹(Kₖ yₖ)
+        x_ += result;
+        after_update_ = true;
+        request_residual();
+        return;
     }
-    return x_;
-  }
-
-  /// Takes w = A·operand() and moves to the next step.
-  void take(const Eigen::Ref<const Eigen::VectorXd>& w,
-            const std::function<void(int, int, double)>& monitor, int column) {
-    if (step_ == Step::arnoldi)
-      take_arnoldi(w, monitor, column);
-    else
-      take_residual(w);
   }
 
   const Eigen::VectorXd& solution() const { return x_; }
   const GmresResult& result() const { return result_; }
 
  private:
-  void take_residual(const Eigen::Ref<const Eigen::VectorXd>& w) {
-    const Eigen::VectorXd r = b_ - w;
+  enum class Next { scale, residual, preconditioned_residual, arnoldi_operand, arnoldi, correction };
+
+  /// The norm the tolerance applies to: ‖b‖, or ‖M⁻¹b‖ when preconditioned on the left.
+  double reference_norm() const { return left_ ? norm_scale_ : norm_b_; }
+
+  void request_residual() {
+    input_ = x_;
+    next_ = Next::residual;
+    wants_ = Wants::a;
+  }
+
+  /// r: the (preconditioned, on the left) residual of the current x.
+  void start_cycle(const Eigen::Ref<const Eigen::VectorXd>& r) {
     const double new_beta = r.norm();
     if (after_update_ && !(new_beta < beta_)) {  // stagnation (or NaN): a restart won't help
       beta_ = new_beta;
@@ -76,7 +121,7 @@ class ColumnGmres {
       return;
     }
     beta_ = new_beta;
-    if (!(beta_ > options_.tolerance * norm_b_) ||
+    if (!(beta_ > options_.tolerance * reference_norm()) ||
         result_.iterations >= options_.max_iterations) {
       finish();
       return;
@@ -93,11 +138,17 @@ class ColumnGmres {
     g_(0) = beta_;
     h_.setZero();
     k_ = 0;
-    step_ = Step::arnoldi;
+    request_arnoldi();
   }
 
-  void take_arnoldi(const Eigen::Ref<const Eigen::VectorXd>& product,
-                    const std::function<void(int, int, double)>& monitor, int column) {
+  void request_arnoldi() {
+    input_ = basis_.col(k_);
+    next_ = Next::arnoldi_operand;
+    wants_ = left_ ? Wants::a : Wants::m;
+  }
+
+  void arnoldi(const Eigen::Ref<const Eigen::VectorXd>& product,
+               const std::function<void(int, int, double)>& monitor, int column) {
     Eigen::VectorXd w = product;
     ++result_.iterations;
     const int k = k_;
@@ -114,7 +165,7 @@ class ColumnGmres {
       h_(i, k) = t;
     }
     const double rho = std::sqrt(h_(k, k) * h_(k, k) + h_(k + 1, k) * h_(k + 1, k));
-    if (!(rho > kBreakdown * w_before)) {  // A·z_k adds nothing: keep the first k steps
+    if (!(rho > kBreakdown * w_before)) {  // the image adds nothing: keep the first k steps
       end_cycle();
       return;
     }
@@ -124,7 +175,7 @@ class ColumnGmres {
     h_(k + 1, k) = 0.0;
     g_(k + 1) = -sn_(k) * g_(k);
     g_(k) = cs_(k) * g_(k);
-    const double estimate = std::abs(g_(k + 1)) / norm_b_;
+    const double estimate = std::abs(g_(k + 1)) / reference_norm();
     if (monitor) monitor(column, result_.iterations, estimate);
     ++k_;
     if (estimate <= options_.tolerance || !(w_norm > kBreakdown * w_before)) {
@@ -133,30 +184,47 @@ class ColumnGmres {
     }
     basis_.col(k_) = w / w_norm;
     if (k_ < m_ && result_.iterations < options_.max_iterations)
-      step_ = Step::arnoldi;
+      request_arnoldi();
     else
       end_cycle();
   }
 
+  /// The cycle's correction Kₖ yₖ, yₖ solving the rotated least-squares problem Hₖ yₖ = gₖ.
   void end_cycle() {
-    if (k_ == 0)
+    if (k_ == 0) {
       finish();  // no usable direction
-    else
-      step_ = Step::update;
+      return;
+    }
+    const Eigen::VectorXd y =
+        h_.topLeftCorner(k_, k_).triangularView<Eigen::Upper>().solve(g_.head(k_));
+    if (left_) {
+      x_ += basis_.leftCols(k_) * y;
+      after_update_ = true;
+      request_residual();
+    } else {
+      input_ = basis_.leftCols(k_) * y;
+      next_ = Next::correction;
+      wants_ = Wants::m;
+    }
   }
 
   void finish() {
-    result_.residual = beta_ / norm_b_;
-    result_.converged = result_.residual <= options_.tolerance;
-    step_ = Step::done;
+    result_.residual = true_norm_ / norm_b_;
+    result_.preconditioned_residual =
+        left_ && norm_scale_ > 0.0 ? beta_ / norm_scale_ : result_.residual;
+    result_.converged =
+        (left_ ? result_.preconditioned_residual : result_.residual) <= options_.tolerance;
+    wants_ = Wants::nothing;
   }
 
-  Eigen::VectorXd b_, x_;
+  Eigen::VectorXd b_, x_, input_;
   GmresOptions options_;
   int m_ = 1;
-  double norm_b_ = 0.0, beta_ = 0.0;
+  bool left_ = false;
+  double norm_b_ = 0.0, norm_scale_ = 0.0, beta_ = 0.0, true_norm_ = 0.0;
   bool after_update_ = false;
-  Step step_ = Step::residual;
+  Wants wants_ = Wants::nothing;
+  Next next_ = Next::residual;
   Eigen::MatrixXd basis_, h_;
   Eigen::VectorXd cs_, sn_, g_;
   int k_ = 0;
@@ -176,39 +244,31 @@ std::vector<GmresResult> gmres_columns(const ColumnsOperator& a,
   columns.reserve(static_cast<std::size_t>(count));
   for (Eigen::Index c = 0; c < count; ++c) columns.emplace_back(b.col(c), x.col(c), options);
 
-  Eigen::MatrixXd u, z, t, w;
-  std::vector<int> active;
+  // Each round applies M⁻¹ once to the columns that want it, then A once to the columns
+  // that want it (a column handed M⁻¹'s result may want A in the same round).
+  Eigen::MatrixXd in, out;
+  std::vector<int> asking;
+  const auto apply = [&](Wants which, const ColumnsOperator& op) {
+    asking.clear();
+    for (int c = 0; c < int(count); ++c)
+      if (columns[size_t(c)].wants() == which) asking.push_back(c);
+    if (asking.empty()) return;
+    in.resize(n, Eigen::Index(asking.size()));
+    for (std::size_t i = 0; i < asking.size(); ++i)
+      in.col(Eigen::Index(i)) = columns[size_t(asking[i])].input();
+    if (op)
+      op(in, out);
+    else
+      out = in;  // no preconditioner: the identity
+    for (std::size_t i = 0; i < asking.size(); ++i)
+      columns[size_t(asking[i])].receive(out.col(Eigen::Index(i)), monitor, asking[i]);
+  };
   for (;;) {
-    active.clear();
-    Eigen::Index preconditioned = 0;
-    for (int c = 0; c < int(count); ++c) {
-      if (columns[size_t(c)].step() == ColumnGmres::Step::done) continue;
-      active.push_back(c);
-      if (columns[size_t(c)].wants_preconditioner()) ++preconditioned;
-    }
-    if (active.empty()) break;
-    // One M⁻¹ for the columns that want it, then one A for every active column.
-    u.resize(n, preconditioned);
-    Eigen::Index j = 0;
-    for (const int c : active)
-      if (columns[size_t(c)].wants_preconditioner()) u.col(j++) = columns[size_t(c)].preconditioner_input();
-    if (preconditioned > 0) {
-      if (preconditioner)
-        preconditioner(u, z);
-      else
-        z = u;
-    }
-    t.resize(n, Eigen::Index(active.size()));
-    j = 0;
-    for (std::size_t i = 0; i < active.size(); ++i) {
-      ColumnGmres& column = columns[size_t(active[i])];
-      t.col(Eigen::Index(i)) = column.wants_preconditioner()
-                                   ? column.operand(z.col(j++))
-                                   : column.operand(Eigen::VectorXd());
-    }
-    a(t, w);
-    for (std::size_t i = 0; i < active.size(); ++i)
-      columns[size_t(active[i])].take(w.col(Eigen::Index(i)), monitor, active[i]);
+    bool all_done = true;
+    for (const ColumnGmres& column : columns) all_done = all_done && column.done();
+    if (all_done) break;
+    apply(Wants::m, preconditioner);
+    apply(Wants::a, a);
   }
 
   std::vector<GmresResult> results;

@@ -1,10 +1,15 @@
 #pragma once
-// Restarted GMRES(m) with right preconditioning (Saad & Schultz 1986; Saad, "Iterative
-// Methods for Sparse Linear Systems", §9.3.2): solves A x = b by minimising ‖b − A M⁻¹ u‖
-// over Krylov spaces of A M⁻¹, x = M⁻¹ u. With right preconditioning the residual GMRES
-// monitors is the true residual of A x = b, so `tolerance` means ‖b − A x‖ ≤ tol·‖b‖.
-// Modified Gram–Schmidt Arnoldi, Givens rotations; the final residual is recomputed from
-// scratch and reported.
+// Restarted GMRES(m) (Saad & Schultz 1986; Saad, "Iterative Methods for Sparse Linear
+// Systems", §9.3) with the preconditioner M⁻¹ on either side, modified Gram–Schmidt
+// Arnoldi and Givens rotations:
+//   right — minimises ‖b − A M⁻¹u‖ over Krylov spaces of A M⁻¹, x = M⁻¹u. The residual it
+//           monitors is the true one: `tolerance` means ‖b − A x‖ ≤ tol·‖b‖.
+//   left  — minimises ‖M⁻¹(b − A x)‖ over Krylov spaces of M⁻¹A: `tolerance` means
+//           ‖M⁻¹(b − A x)‖ ≤ tol·‖M⁻¹b‖. When M⁻¹ approximates A⁻¹, M⁻¹(b − A x)
+//           approximates the error A⁻¹b − x, so this bounds the solution's error rather than
+//           the equations' mismatch. For a first-kind operator (condition number growing
+//           like 1/h) the two differ by that condition number.
+// Either way the final true residual is recomputed from scratch and reported.
 //
 // Several right-hand sides with the same A (the three coordinate directions of the
 // transmission problem) are solved by `gmres_columns`: one GMRES per column, run in
@@ -28,8 +33,13 @@ using LinearOperator = std::function<void(const Eigen::VectorXd& x, Eigen::Vecto
 /// the operator.
 using ColumnsOperator = std::function<void(const Eigen::MatrixXd& x, Eigen::MatrixXd& y)>;
 
+/// Which side of A the preconditioner is applied on (see above).
+enum class PreconditionerSide { right, left };
+
 struct GmresOptions {
-  double tolerance = 1e-6;   ///< relative residual ‖b − A x‖/‖b‖ to reach
+  double tolerance = 1e-6;   ///< relative residual to reach: ‖b − A x‖/‖b‖ (right),
+                             ///< ‖M⁻¹(b − A x)‖/‖M⁻¹b‖ (left)
+  PreconditionerSide side = PreconditionerSide::right;
   int restart = 60;          ///< Krylov dimension m before a restart
   int max_iterations = 600;  ///< total matrix–vector products allowed
 };
@@ -37,6 +47,8 @@ struct GmresOptions {
 struct GmresResult {
   int iterations = 0;     ///< matrix–vector products with A (Arnoldi steps)
   double residual = 0.0;  ///< ‖b − A x‖/‖b‖ recomputed at the end
+  /// ‖M⁻¹(b − A x)‖/‖M⁻¹b‖ at the end when preconditioned on the left (else = residual)
+  double preconditioned_residual = 0.0;
   bool converged = false;
 };
 

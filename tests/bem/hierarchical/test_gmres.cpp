@@ -1,6 +1,7 @@
 // bem/hierarchical/gmres.hpp: restarted GMRES on small non-symmetric systems against a
 // direct solve; the reported residual is the true one; an exact preconditioner converges in
-// one step; a singular, inconsistent system is reported as not converged.
+// one step on either side; preconditioned on the left, the tolerance bounds the
+// preconditioned residual; a singular, inconsistent system is reported as not converged.
 #include <catch2/catch.hpp>
 #include <algorithm>
 #include <random>
@@ -46,6 +47,48 @@ TEST_CASE("GMRES: restarted solve of a non-symmetric system, true residual repor
   CHECK(r2.iterations == 1);
 }
 
+TEST_CASE("GMRES preconditioned on the left: the tolerance bounds M⁻¹ times the residual") {
+  const int n = 180;
+  // Rows scaled over three decades: A = D B with B well conditioned, M = D. The equations'
+  // residual weights the rows by D; the preconditioned residual B(x* − x) does not.
+  Eigen::MatrixXd a = test_matrix(n, 5);
+  const Eigen::VectorXd d = Eigen::VectorXd::LinSpaced(n, -3.0, 0.0).unaryExpr([](double e) {
+    return std::pow(10.0, e);
+  });
+  a = d.asDiagonal() * a;
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(n, 0.0, 4.0).array().cos();
+  const Eigen::VectorXd exact = a.partialPivLu().solve(b);
+  const bem::LinearOperator op = [&](const Eigen::VectorXd& x, Eigen::VectorXd& y) { y = a * x; };
+  const bem::LinearOperator scaling = [&](const Eigen::VectorXd& r, Eigen::VectorXd& z) {
+    z = r.cwiseQuotient(d);
+  };
+  bem::GmresOptions options;
+  options.tolerance = 1e-8;
+  options.restart = 9;  // restarts, each ending with the true and the preconditioned residual
+  options.side = bem::PreconditionerSide::left;
+  Eigen::VectorXd x;
+  const bem::GmresResult r = bem::gmres(op, scaling, b, x, options);
+  CAPTURE(r.iterations, r.residual, r.preconditioned_residual);
+  CHECK(r.converged);
+  CHECK(r.iterations > 9);
+  const Eigen::VectorXd scaled_b = b.cwiseQuotient(d);
+  CHECK(r.preconditioned_residual <= 1e-8);
+  CHECK(r.preconditioned_residual ==
+        Approx((b - a * x).cwiseQuotient(d).norm() / scaled_b.norm()).epsilon(1e-3).margin(1e-15));
+  CHECK(r.residual == Approx((b - a * x).norm() / b.norm()).epsilon(1e-3).margin(1e-15));
+  // B(x* − x) = M⁻¹r and ‖B⁻¹‖ is about 1/2 (eigenvalues around 2): the error follows.
+  CHECK((x - exact).norm() <= 1e-8 * scaled_b.norm());
+
+  // An exact preconditioner: M⁻¹A = I, one step.
+  const Eigen::PartialPivLU<Eigen::MatrixXd> lu(a);
+  const bem::LinearOperator inverse = [&](const Eigen::VectorXd& v, Eigen::VectorXd& z) { z = lu.solve(v); };
+  Eigen::VectorXd x2;
+  const bem::GmresResult r2 = bem::gmres(op, inverse, b, x2, options);
+  CHECK(r2.converged);
+  CHECK(r2.iterations == 1);
+  CHECK((x2 - exact).norm() <= 1e-10 * exact.norm());
+}
+
 TEST_CASE("GMRES: an inconsistent singular system is reported as not converged") {
   Eigen::MatrixXd a = Eigen::MatrixXd::Identity(10, 10);
   a(9, 9) = 0.0;
@@ -58,6 +101,8 @@ TEST_CASE("GMRES: an inconsistent singular system is reported as not converged")
 }
 
 TEST_CASE("GMRES in lockstep: each column as if solved alone, one product per step for all") {
+  const auto side = GENERATE(bem::PreconditionerSide::right, bem::PreconditionerSide::left);
+  CAPTURE(side == bem::PreconditionerSide::left);
   const int n = 150;
   const Eigen::MatrixXd a = test_matrix(n, 11);
   Eigen::MatrixXd b(n, 4);
@@ -68,6 +113,7 @@ TEST_CASE("GMRES in lockstep: each column as if solved alone, one product per st
   bem::GmresOptions options;
   options.tolerance = 1e-9;
   options.restart = 7;  // several restarts, at different steps for different columns
+  options.side = side;
   // A diagonal (Jacobi) preconditioner, so that the preconditioned path is exercised.
   const Eigen::VectorXd inverse_diagonal = a.diagonal().cwiseInverse();
 

@@ -37,9 +37,22 @@ TEST_CASE("H-matrix solver = dense solver on the ball and the closed form at its
   CHECK(relative(fast.phi, dense.phi) < 1e-7);
   CHECK(relative(fast.q, dense.q) < 1e-6);
 
-  // The default tolerances: within the discretisation error of the closed form.
+  // The default tolerances. GMRES preconditioned on the left stops on the preconditioned
+  // residual, which tracks the densities' error: q agrees with the dense path to the
+  // issue's 1e−5 and about the tolerance, where the equations' own residual (right
+  // preconditioning) leaves q's error 10–30 times larger than the tolerance.
   const auto coarse = bem::solve_transmission_hmatrix(mesh, kParameters);
+  CHECK(coarse.report.preconditioned_residual <= 1e-6);
   CHECK(coarse.report.residual <= 1e-6);
+  bem::HMatrixSolverOptions right;
+  right.preconditioner_side = bem::PreconditionerSide::right;
+  const auto on_the_right = bem::solve_transmission_hmatrix(mesh, kParameters, right);
+  CAPTURE(relative(coarse.q, dense.q), relative(on_the_right.q, dense.q),
+          coarse.report.iterations, on_the_right.report.iterations);
+  CHECK(on_the_right.report.residual <= 1e-6);
+  CHECK(relative(coarse.phi, dense.phi) < 1e-6);
+  CHECK(relative(coarse.q, dense.q) < 1e-5);  // 4.2e−6 measured; on the right 6.5e−5
+  CHECK(relative(coarse.q, dense.q) < 0.3 * relative(on_the_right.q, dense.q));
   const auto field = bem::evaluate_potential(mesh, coarse, Eigen::MatrixX3d::Zero(1, 3));
   const double f_h = kPaper.h0 * kPaper.h0 * (field.gradient(0, 0) + field.gradient(0, 4) + field.gradient(0, 8));
   const double exact = ref::inverse_thickness(kPaper, 3.0 * ref::ball_solution(kPaper, 0.5).A);
