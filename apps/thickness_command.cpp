@@ -187,6 +187,9 @@ nlohmann::json report_json(const ThicknessOptions& options, double h0, const Bou
   nlohmann::json assembly_stages = nlohmann::json::object();
   for (const auto& [stage, seconds] : run.solution.report.assembly_stages)
     assembly_stages[stage] = seconds;
+  nlohmann::json solve_stages = nlohmann::json::object();
+  for (const auto& [stage, seconds] : run.solution.report.solve_stages)
+    solve_stages[stage] = seconds;
   // Megabytes of the operators' parts, by the same names (empty for the dense path).
   nlohmann::json operator_parts = nlohmann::json::object();
   for (const auto& [part, bytes] : run.solution.report.operator_parts)
@@ -231,6 +234,7 @@ nlohmann::json report_json(const ThicknessOptions& options, double h0, const Bou
         {"operator_mb", double(run.solution.report.operator_bytes) / 1e6},
         {"compression", run.solution.report.compression},
         {"assembly_stages", assembly_stages},
+        {"solve_stages", solve_stages},
         {"operator_parts_mb", operator_parts}}},
       {"timing", timing},
       {"memory", {{"peak_mb", peak_mb}}}};

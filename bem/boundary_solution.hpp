@@ -32,6 +32,8 @@ struct SolveReport {
   /// Stages of the assembly, in order (name, wall time [s]); empty for the dense path, whose
   /// assembly is one stage.
   std::vector<std::pair<std::string, double>> assembly_stages;
+  /// Where the solve's wall time went (name, seconds); empty for the dense path.
+  std::vector<std::pair<std::string, double>> solve_stages;
   std::uint64_t operator_bytes = 0;  ///< memory held by the assembled operators [bytes]
   /// operator_bytes by part, in the order of assembly_stages (name, bytes); empty for the
   /// dense path.

@@ -178,7 +178,10 @@ BoundarySolution solve_transmission_hmatrix(const geometry::SurfaceMesh& mesh,
   // so each step reads the H-matrix, the sparse exterior matrix and the preconditioner's
   // factors once for all three vectors. x, y: 2n × k, one column per direction.
   using RowMajorMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  double interior_product_seconds = 0.0, exterior_product_seconds = 0.0,
+         preconditioner_seconds = 0.0;
   const auto system = [&](const Eigen::MatrixXd& x, Eigen::MatrixXd& y) {
+    const auto interior_start = Clock::now();
     const Eigen::Index k = x.cols();
     y.resize(2 * n, k);
     Eigen::MatrixXd densities(n, 2 * k);  // column 2j: φ of vector j, 2j + 1: its q
@@ -188,17 +191,22 @@ BoundarySolution solve_transmission_hmatrix(const geometry::SurfaceMesh& mesh,
     }
     y.topRows(n).noalias() = -(half_mass.asDiagonal() * x.topRows(n));
     laplace.multiply_add(densities, y.topRows(n));
+    const auto exterior_start = Clock::now();
+    interior_product_seconds += seconds_since(interior_start);
     // A row-major right-hand side lets the sparse product read each row once for all k.
     const RowMajorMatrix x_rows = x;
     const RowMajorMatrix exterior =
         with_exterior([&](const auto& yukawa) { return sparse_rows_product(yukawa, x_rows); });
     y.bottomRows(n) = half_mass.asDiagonal() * x.topRows(n) + exterior;
+    exterior_product_seconds += seconds_since(exterior_start);
   };
   const auto precondition = [&](const Eigen::MatrixXd& r, Eigen::MatrixXd& z) {
+    const auto start = Clock::now();
     if (coarse)
       coarse->apply_two_level(preconditioner, r, z);
     else
       preconditioner.apply(r, z);
+    preconditioner_seconds += seconds_since(start);
   };
 
   const auto solve_start = Clock::now();
@@ -247,6 +255,12 @@ BoundarySolution solve_transmission_hmatrix(const geometry::SurfaceMesh& mesh,
   }
   report_progress(progress, "solve", 1.0);
   solution.report.solve_seconds = seconds_since(solve_start);
+  solution.report.solve_stages = {
+      {"interior product", interior_product_seconds},
+      {"exterior product", exterior_product_seconds},
+      {"preconditioner", preconditioner_seconds},
+      {"Krylov and the rest", solution.report.solve_seconds - interior_product_seconds -
+                     exterior_product_seconds - preconditioner_seconds}};
   return solution;
 }
 

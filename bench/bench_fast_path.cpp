@@ -438,15 +438,20 @@ int main(int argc, char** argv) {
                 r.solve, r.features, r.solution.report.iterations, r.solution.report.residual,
                 double(peak_resident_bytes()) / 1e6, double(r.solution.report.operator_bytes) / 1e6,
                 r.solution.report.compression, r.error, cpu);
-    if (!r.solution.report.assembly_stages.empty()) {
-      std::printf(", \"assembly_stages\": {");
+    // Stage timings as a JSON object of seconds; nothing for the dense path.
+    const auto print_stages = [](const char* name,
+                                 const std::vector<std::pair<std::string, double>>& stages) {
+      if (stages.empty()) return;
+      std::printf(", \"%s\": {", name);
       const char* separator = "";
-      for (const auto& [stage, stage_seconds] : r.solution.report.assembly_stages) {
+      for (const auto& [stage, stage_seconds] : stages) {
         std::printf("%s\"%s\": %.3f", separator, stage.c_str(), stage_seconds);
         separator = ", ";
       }
       std::printf("}");
-    }
+    };
+    print_stages("assembly_stages", r.solution.report.assembly_stages);
+    print_stages("solve_stages", r.solution.report.solve_stages);
     if (!r.solution.report.operator_parts.empty()) {
       std::printf(", \"operator_parts_mb\": {");
       const char* separator = "";

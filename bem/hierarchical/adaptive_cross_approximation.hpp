@@ -9,8 +9,10 @@
 //   ‖u_k‖·‖v_k‖ ≤ ε·‖U Vᵀ‖_F,
 // the usual estimate of the relative Frobenius error ‖A − U Vᵀ‖_F/‖A‖_F (exact for
 // asymptotically smooth kernels on admissible blocks, where the singular values decay
-// geometrically). Recompression: U = Q_u R_u, V = Q_v R_v, R_u R_vᵀ = W Σ Zᵀ, keep the
-// smallest r with (Σ_{i>r} σ_i²)^{1/2} ≤ ε·‖Σ‖.
+// geometrically). Recompression: U = Q_u R_u, V = Q_v R_v, B = R_u R_vᵀ, and the truncated
+// SVD of B: keep the smallest r with (Σ_{i>r} σ_i²)^{1/2} ≤ ε·‖B‖_F. The singular vectors
+// come from the eigenvectors of BᵀB with the truncation measured on B itself (see
+// recompress): the SVD's ranks at a fifth of its cost.
 
 #include <functional>
 #include <optional>
@@ -38,7 +40,9 @@ std::optional<LowRankBlock> adaptive_cross_approximation(Eigen::Index m, Eigen::
                                                          const ColumnGenerator& column,
                                                          double epsilon, Eigen::Index max_rank);
 
-/// The smallest-rank U'·V'ᵀ within relative Frobenius distance `epsilon` of U·Vᵀ.
+/// The smallest-rank U'·V'ᵀ within relative Frobenius distance `epsilon` of U·Vᵀ (to
+/// rounding: the rank of the truncated SVD, unless singular values lie within rounding of
+/// each other, where it may keep one more).
 LowRankBlock recompress(const LowRankBlock& block, double epsilon);
 
 }  // namespace bemshape::bem

@@ -1,8 +1,11 @@
 // bem/hierarchical/adaptive_cross_approximation.hpp: ACA reproduces low-rank matrices
 // exactly, approximates a smooth kernel between separated clusters to its tolerance with a
-// small rank, and gives rank 0 for a zero block.
+// small rank, and gives rank 0 for a zero block; recompression keeps the rank of the
+// truncated SVD within the tolerance.
 #include <catch2/catch.hpp>
 #include <random>
+
+#include <Eigen/SVD>
 
 #include "bem/hierarchical/adaptive_cross_approximation.hpp"
 
@@ -78,4 +81,35 @@ TEST_CASE("recompression: rank of a redundant factorisation drops to the true ra
   const bem::LowRankBlock r = bem::recompress(redundant, 1e-12);
   CHECK(r.rank() == 2);
   CHECK((r.U * r.V.transpose() - 2.0 * u * v.transpose()).norm() < 1e-12 * (u * v.transpose()).norm());
+}
+
+TEST_CASE("recompression: the truncated SVD's rank and error at tolerances down to 1e-12") {
+  // A redundant factorisation (ACA's overshoot, and more) of the 1/r kernel between two
+  // clouds 3 diameters apart, whose singular values decay geometrically down to rounding.
+  const Eigen::MatrixX3d x = random_cloud(120, Eigen::Vector3d::Zero(), 4);
+  const Eigen::MatrixX3d y = random_cloud(90, Eigen::Vector3d(3.0, 0.5, 0.0), 5);
+  Eigen::MatrixXd a(120, 90);
+  for (int i = 0; i < 120; ++i)
+    for (int j = 0; j < 90; ++j) a(i, j) = 1.0 / (x.row(i) - y.row(j)).norm();
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(a, Eigen::ComputeThinU | Eigen::ComputeThinV);
+  const Eigen::VectorXd& sigma = svd.singularValues();
+  const int k = 40;  // redundant: U Vᵀ = A_k split over two copies of its factors
+  bem::LowRankBlock factors;
+  factors.U.resize(120, 2 * k);
+  factors.V.resize(90, 2 * k);
+  const Eigen::MatrixXd us = svd.matrixU().leftCols(k) * sigma.head(k).asDiagonal();
+  factors.U << 0.25 * us, 0.75 * us;
+  factors.V << svd.matrixV().leftCols(k), svd.matrixV().leftCols(k);
+  const Eigen::MatrixXd ak = us * svd.matrixV().leftCols(k).transpose();
+  for (const double epsilon : {1e-4, 1e-8, 1e-10, 1e-12}) {
+    // The optimal rank: the smallest r with (Σ_{i>r} σ_i²)^{1/2} ≤ ε ‖A_k‖_F.
+    const double total2 = sigma.head(k).squaredNorm();
+    int optimal = k;
+    while (optimal > 0 && sigma.segment(optimal - 1, k - optimal + 1).squaredNorm() <= epsilon * epsilon * total2)
+      --optimal;
+    const bem::LowRankBlock r = bem::recompress(factors, epsilon);
+    CAPTURE(epsilon, optimal, r.rank());
+    CHECK(r.rank() == optimal);
+    CHECK((r.U * r.V.transpose() - ak).norm() <= 1.01 * epsilon * ak.norm() + 1e-15 * ak.norm());
+  }
 }
