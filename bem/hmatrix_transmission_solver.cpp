@@ -32,19 +32,24 @@ constexpr double kTypicalRank = 16.0;
 
 using RowMajorRows = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
-/// y·x for the exterior matrix in double or single precision (entries promoted to double),
-/// x row-major so that each row of y reads its columns' rows of x once for all k vectors.
+/// Y·x for the exterior matrix in double or single precision (entries promoted to double),
+/// x (2n × k) row-major so that each pair of row i reads the rows j (φ) and n + j (q) of x
+/// once for all k vectors.
 template <class Scalar>
-RowMajorRows sparse_rows_product(const SparseRowMatrixOf<Scalar>& y, const RowMajorRows& x) {
-  const Eigen::Index k = x.cols();
-  RowMajorRows out = RowMajorRows::Zero(y.rows(), k);
+RowMajorRows sparse_rows_product(const YukawaNearField<Scalar>& y, const RowMajorRows& x) {
+  const Eigen::Index k = x.cols(), n = y.rows();
+  RowMajorRows out = RowMajorRows::Zero(n, k);
+  const std::int32_t* const column = y.column();
+  const Scalar* const minus_k = y.minus_double_layer();
+  const Scalar* const v = y.single_layer();
 #pragma omp parallel for schedule(static, 256)
-  for (Eigen::Index i = 0; i < y.rows(); ++i) {
+  for (Eigen::Index i = 0; i < n; ++i) {
     double* const sums = out.data() + i * k;
-    for (typename SparseRowMatrixOf<Scalar>::InnerIterator it(y, i); it; ++it) {
-      const double v = double(it.value());
-      const double* const row = x.data() + it.col() * k;
-      for (Eigen::Index c = 0; c < k; ++c) sums[c] += v * row[c];
+    for (Eigen::Index s = y.row_begin(i); s < y.row_end(i); ++s) {
+      const double a = double(minus_k[s]), b = double(v[s]);
+      const double* const phi = x.data() + Eigen::Index(column[s]) * k;
+      const double* const q = phi + n * k;
+      for (Eigen::Index c = 0; c < k; ++c) sums[c] += a * phi[c] + b * q[c];
     }
   }
   return out;
@@ -52,7 +57,7 @@ RowMajorRows sparse_rows_product(const SparseRowMatrixOf<Scalar>& y, const RowMa
 
 }  // namespace
 
-std::uint64_t hmatrix_solver_memory_estimate(Eigen::Index faces, std::uint64_t exterior_entries,
+std::uint64_t hmatrix_solver_memory_estimate(Eigen::Index faces, std::uint64_t exterior_pairs,
                                              const HMatrixSolverOptions& options) {
   const double n = double(faces);
   // Near field: each leaf meets O(1) leaves densely (measured on a sphere: 30 at η = 1, 20
@@ -64,9 +69,9 @@ std::uint64_t hmatrix_solver_memory_estimate(Eigen::Index faces, std::uint64_t e
   const double entry_bytes = options.single_precision ? 4.0 : 8.0;
   const double laplace = n * entry_bytes * (2.0 * near_leaves * leaf +
                                             levels * 6.0 * 3.0 * kTypicalRank);
-  // Yukawa: a value (single or double precision) and a 32-bit column per entry, written in
-  // place.
-  const double yukawa = (entry_bytes + 4.0) * double(exterior_entries) + 8.0 * n;
+  // Yukawa: two values (single or double precision) and a 32-bit column per pair, written
+  // in place.
+  const double yukawa = (2.0 * entry_bytes + 4.0) * double(exterior_pairs) + 8.0 * n;
   const double preconditioner =
       double(ClusterBlockPreconditioner::bytes_for(faces, options.preconditioner_block));
   // The coarse space: A_c and its LU for at most kMaxClusters clusters (A E's factors are
@@ -101,7 +106,7 @@ BoundarySolution solve_transmission_hmatrix(const geometry::SurfaceMesh& mesh,
   const double negligible = options.aca_tolerance;
   const auto count_start = Clock::now();
   const Eigen::VectorX<Eigen::Index> exterior_rows =
-      yukawa_near_field_row_sizes(panels, tree, parameters.kappa, negligible);
+      yukawa_near_field_row_pairs(panels, tree, parameters.kappa, negligible);
   const double count_seconds = seconds_since(count_start);
   require_memory(hmatrix_solver_memory_estimate(n, std::uint64_t(exterior_rows.sum()), options),
                  "the hierarchical-matrix BEM system of " + std::to_string(n) + " faces",
@@ -121,18 +126,16 @@ BoundarySolution solve_transmission_hmatrix(const geometry::SurfaceMesh& mesh,
   const double interior_seconds = seconds_since(interior_start);
   report_progress(progress, "assemble exterior", 0.0);
   const auto exterior_start = Clock::now();
-  // In single precision with the factors (8 bytes per entry instead of 12); one of the two
+  // In single precision with the factors (12 bytes per pair instead of 20); one of the two
   // is assembled, and with_exterior hands it to the code that reads it.
-  // (Initialised, not assigned: Eigen's sparse assignment copies, which would hold the
-  // matrix twice.)
-  const SparseRowMatrix yukawa_double =
-      options.single_precision ? SparseRowMatrix()
+  const YukawaNearField<double> yukawa_double =
+      options.single_precision ? YukawaNearField<double>()
                                : assemble_yukawa_near_field<double>(panels, tree, parameters.kappa,
                                                                     negligible, progress, &exterior_rows);
-  const SparseRowMatrixSingle yukawa_single =
+  const YukawaNearField<float> yukawa_single =
       options.single_precision ? assemble_yukawa_near_field<float>(panels, tree, parameters.kappa,
                                                                    negligible, progress, &exterior_rows)
-                               : SparseRowMatrixSingle();
+                               : YukawaNearField<float>();
   const auto with_exterior = [&](const auto& use) {
     return options.single_precision ? use(yukawa_single) : use(yukawa_double);
   };
@@ -168,7 +171,7 @@ BoundarySolution solve_transmission_hmatrix(const geometry::SurfaceMesh& mesh,
   solution.report.operator_parts = {
       {"interior near field", hstats.dense_bytes},
       {"interior far field", hstats.low_rank_bytes},
-      {"exterior near field", with_exterior([](const auto& yukawa) { return stored_bytes(yukawa); })},
+      {"exterior near field", with_exterior([](const auto& yukawa) { return yukawa.bytes(); })},
       {"preconditioner", preconditioner.bytes() + (coarse ? coarse->bytes() : 0)}};
   for (const auto& [part, bytes] : solution.report.operator_parts)
     solution.report.operator_bytes += bytes;

@@ -67,9 +67,9 @@ struct HMatrixSolverOptions {
 
 /// Bytes the fast path is expected to hold for `faces` faces (the guard's estimate: near
 /// field and low-rank factors at a typical rank, the exterior matrix of
-/// `exterior_entries` entries (yukawa_near_field_row_sizes counts them), preconditioner,
+/// `exterior_pairs` panel pairs (yukawa_near_field_row_pairs counts them), preconditioner,
 /// Krylov bases).
-std::uint64_t hmatrix_solver_memory_estimate(Eigen::Index faces, std::uint64_t exterior_entries,
+std::uint64_t hmatrix_solver_memory_estimate(Eigen::Index faces, std::uint64_t exterior_pairs,
                                              const HMatrixSolverOptions& options);
 
 /// Solves for s_1, s_2, s_3 on a closed, outward-oriented mesh. Throws ResourceError if the

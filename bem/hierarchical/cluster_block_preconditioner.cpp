@@ -8,7 +8,7 @@ namespace bemshape::bem {
 template <class Scalar>
 ClusterBlockPreconditioner::ClusterBlockPreconditioner(const ClusterTree& tree,
                                                        const HierarchicalMatrix& laplace,
-                                                       const SparseRowMatrixOf<Scalar>& yukawa,
+                                                       const YukawaNearField<Scalar>& yukawa,
                                                        const Eigen::VectorXd& half_mass,
                                                        Eigen::Index block_size)
     : n_(tree.root().size()) {
@@ -33,13 +33,12 @@ ClusterBlockPreconditioner::ClusterBlockPreconditioner(const ClusterTree& tree,
       for (Eigen::Index r = 0; r < s; ++r) {
         local(r, r) -= half_mass(begin + r);
         local(s + r, r) += half_mass(begin + r);
-        for (typename SparseRowMatrixOf<Scalar>::InnerIterator it(yukawa, begin + r); it; ++it) {
-          const Eigen::Index c = it.col();
-          if (c >= begin && c < end)
-            local(s + r, c - begin) += it.value();
-          else if (c >= n_ + begin && c < n_ + end)
-            local(s + r, s + c - n_ - begin) += it.value();
-        }
+        yukawa.for_each_in_row(begin + r, [&](Eigen::Index c, double minus_k, double v) {
+          if (c >= begin && c < end) {
+            local(s + r, c - begin) += minus_k;
+            local(s + r, s + c - begin) += v;
+          }
+        });
       }
       interior[t - first].resize(0, 0);
       factors_[t].compute(local.cast<float>());
@@ -49,11 +48,11 @@ ClusterBlockPreconditioner::ClusterBlockPreconditioner(const ClusterTree& tree,
 
 template ClusterBlockPreconditioner::ClusterBlockPreconditioner(const ClusterTree&,
                                                                 const HierarchicalMatrix&,
-                                                                const SparseRowMatrixOf<double>&,
+                                                                const YukawaNearField<double>&,
                                                                 const Eigen::VectorXd&, Eigen::Index);
 template ClusterBlockPreconditioner::ClusterBlockPreconditioner(const ClusterTree&,
                                                                 const HierarchicalMatrix&,
-                                                                const SparseRowMatrixOf<float>&,
+                                                                const YukawaNearField<float>&,
                                                                 const Eigen::VectorXd&, Eigen::Index);
 
 void ClusterBlockPreconditioner::apply(const Eigen::MatrixXd& r, Eigen::MatrixXd& z) const {

@@ -39,7 +39,7 @@ class ClusterBlockPreconditioner {
   /// ½|T| per panel; all in tree order. Scalar: double or float (instantiated for both).
   template <class Scalar>
   ClusterBlockPreconditioner(const ClusterTree& tree, const HierarchicalMatrix& laplace,
-                             const SparseRowMatrixOf<Scalar>& yukawa, const Eigen::VectorXd& half_mass,
+                             const YukawaNearField<Scalar>& yukawa, const Eigen::VectorXd& half_mass,
                              Eigen::Index block_size = kDefaultBlockSize);
 
   /// z = M⁻¹ r for each column r = (r_φ, r_q) of `r` (2N × k, tree order); one pass over

@@ -6,7 +6,7 @@ namespace bemshape::bem {
 
 template <class Scalar>
 ClusterCoarseSpace::ClusterCoarseSpace(const ClusterTree& tree, const HierarchicalMatrix& laplace,
-                                       const SparseRowMatrixOf<Scalar>& yukawa,
+                                       const YukawaNearField<Scalar>& yukawa,
                                        const Eigen::VectorXd& half_mass,
                                        Eigen::Index cluster_size)
     : laplace_(laplace), n_(tree.root().size()), half_mass_(half_mass) {
@@ -28,11 +28,11 @@ ClusterCoarseSpace::ClusterCoarseSpace(const ClusterTree& tree, const Hierarchic
 #pragma omp parallel for schedule(static)
     for (Eigen::Index i = 0; i < n_; ++i) {
       std::map<std::int32_t, double> sums;
-      for (typename SparseRowMatrixOf<Scalar>::InnerIterator it(yukawa, i); it; ++it) {
-        const Eigen::Index c = it.col();
-        sums[std::int32_t(c < n_ ? cluster_of_[size_t(c)] : m + cluster_of_[size_t(c - n_)])] +=
-            it.value();
-      }
+      yukawa.for_each_in_row(i, [&](Eigen::Index j, double minus_k, double v) {
+        const std::int32_t c = std::int32_t(cluster_of_[size_t(j)]);
+        sums[c] += minus_k;
+        sums[std::int32_t(m) + c] += v;
+      });
       rows[size_t(i)].assign(sums.begin(), sums.end());
     }
     yukawa_grouped_.resize(n_, 2 * m);
@@ -60,10 +60,10 @@ ClusterCoarseSpace::ClusterCoarseSpace(const ClusterTree& tree, const Hierarchic
 }
 
 template ClusterCoarseSpace::ClusterCoarseSpace(const ClusterTree&, const HierarchicalMatrix&,
-                                                const SparseRowMatrixOf<double>&,
+                                                const YukawaNearField<double>&,
                                                 const Eigen::VectorXd&, Eigen::Index);
 template ClusterCoarseSpace::ClusterCoarseSpace(const ClusterTree&, const HierarchicalMatrix&,
-                                                const SparseRowMatrixOf<float>&,
+                                                const YukawaNearField<float>&,
                                                 const Eigen::VectorXd&, Eigen::Index);
 
 Eigen::MatrixXd ClusterCoarseSpace::coarse_solve(const Eigen::MatrixXd& r) const {

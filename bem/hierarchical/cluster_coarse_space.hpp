@@ -57,7 +57,7 @@ class ClusterCoarseSpace {
   /// (instantiated for both).
   template <class Scalar>
   ClusterCoarseSpace(const ClusterTree& tree, const HierarchicalMatrix& laplace,
-                     const SparseRowMatrixOf<Scalar>& yukawa, const Eigen::VectorXd& half_mass,
+                     const YukawaNearField<Scalar>& yukawa, const Eigen::VectorXd& half_mass,
                      Eigen::Index cluster_size = kDefaultClusterSize);
 
   /// z = M⁻¹ r = P y + B (r − A P y), y = A_c⁻¹ Pᵀ r, for each column r = (r_φ, r_q) of

@@ -61,7 +61,7 @@ ResourceError ran_out_of_memory(Eigen::Index n) {
 
 }  // namespace
 
-Eigen::VectorX<Eigen::Index> yukawa_near_field_row_sizes(const std::vector<Panel>& panels,
+Eigen::VectorX<Eigen::Index> yukawa_near_field_row_pairs(const std::vector<Panel>& panels,
                                                          const ClusterTree& tree, double kappa,
                                                          double negligible) {
   const auto& perm = tree.permutation();
@@ -81,7 +81,7 @@ Eigen::VectorX<Eigen::Index> yukawa_near_field_row_sizes(const std::vector<Panel
         candidate_panels(test, tree, cutoff.reach, near, stack);
         Eigen::Index count = 0;
         for (const Eigen::Index j : near) count += cutoff.kept(test, panels[size_t(perm[size_t(j)])]);
-        room(i) = 2 * count;
+        room(i) = count;
       } catch (const std::bad_alloc&) {
         out_of_memory = true;  // reported after the loop: an exception cannot leave it
       }
@@ -93,51 +93,46 @@ Eigen::VectorX<Eigen::Index> yukawa_near_field_row_sizes(const std::vector<Panel
 }
 
 template <class Scalar>
-SparseRowMatrixOf<Scalar> assemble_yukawa_near_field(const std::vector<Panel>& panels,
-                                                     const ClusterTree& tree, double kappa,
-                                                     double negligible,
-                                                     const ProgressCallback& progress,
-                                                     const Eigen::VectorX<Eigen::Index>* row_sizes) {
+YukawaNearField<Scalar> assemble_yukawa_near_field(const std::vector<Panel>& panels,
+                                                   const ClusterTree& tree, double kappa,
+                                                   double negligible,
+                                                   const ProgressCallback& progress,
+                                                   const Eigen::VectorX<Eigen::Index>* row_pairs) {
   const auto& perm = tree.permutation();
   const Eigen::Index n = tree.root().size();
   const Cutoff cutoff(panels, kappa, negligible);
   // Two passes, so that the rows are written straight into the matrix and nothing else of
-  // its size is ever held: first each row's room (yukawa_near_field_row_sizes), then the
+  // its size is ever held: first each row's pairs (yukawa_near_field_row_pairs), then the
   // entries.
   Eigen::VectorX<Eigen::Index> counted;
-  if (!row_sizes) counted = yukawa_near_field_row_sizes(panels, tree, kappa, negligible);
-  const Eigen::VectorX<Eigen::Index>& room = row_sizes ? *row_sizes : counted;
+  if (!row_pairs) counted = yukawa_near_field_row_pairs(panels, tree, kappa, negligible);
+  const Eigen::VectorX<Eigen::Index>& room = row_pairs ? *row_pairs : counted;
   BEMSHAPE_ASSERT(room.size() == n, "exterior near field: one row size per panel");
   std::atomic<bool> out_of_memory{false};
   if (room.sum() > std::numeric_limits<std::int32_t>::max())
-    throw ResourceError("the exterior near field of " + std::to_string(n) + " faces needs up to " +
-                        std::to_string(room.sum()) + " entries, more than its 32-bit index allows (" +
+    throw ResourceError("the exterior near field of " + std::to_string(n) + " faces needs " +
+                        std::to_string(room.sum()) + " panel pairs, more than its 32-bit index allows (" +
                         std::to_string(std::numeric_limits<std::int32_t>::max()) +
                         "); use a coarser mesh (larger --max-edge)");
   // The exact size against the memory left now (the interior H-matrix is already held).
-  require_memory((sizeof(Scalar) + 4) * std::uint64_t(room.sum()) + 8 * std::uint64_t(n),
+  require_memory((4 + 2 * sizeof(Scalar)) * std::uint64_t(room.sum()) + 8 * std::uint64_t(n),
                  "the exterior near field of " + std::to_string(n) + " faces (" +
-                     std::to_string(room.sum()) + " entries)",
+                     std::to_string(room.sum()) + " panel pairs)",
                  "use a coarser mesh (larger --max-edge)");
-  SparseRowMatrixOf<Scalar> y(n, 2 * n);
+  YukawaNearField<Scalar> y;
   try {
-    y.reserve(room);  // uncompressed: row i owns room(i) slots from outerIndexPtr()[i]
+    y = YukawaNearField<Scalar>(room);
   } catch (const std::bad_alloc&) {
     throw ran_out_of_memory(n);
   }
   GalerkinOperators<YukawaKernel> yukawa(YukawaKernel{kappa}, panels);
   yukawa.tabulate_touching_pairs();
-  std::int32_t* const columns = y.innerIndexPtr();
-  Scalar* const values = y.valuePtr();
-  const std::int32_t* const row_start = y.outerIndexPtr();
-  std::int32_t* const row_size = y.innerNonZeroPtr();
 
   std::atomic<Eigen::Index> rows_done{0};
 #pragma omp parallel
   {
     std::vector<Eigen::Index> near;
     std::vector<int> stack;
-    std::vector<std::pair<std::int32_t, double>> single;
     std::vector<Eigen::Index> kept, faces;
     std::vector<GalerkinOperators<YukawaKernel>::Entry> entries;
     // Each row writes only its own slots, so the rows can be filled concurrently.
@@ -148,10 +143,6 @@ SparseRowMatrixOf<Scalar> assemble_yukawa_near_field(const std::vector<Panel>& p
       try {
         const Panel& test = panels[size_t(perm[size_t(i)])];
         candidate_panels(test, tree, cutoff.reach, near, stack);
-        single.clear();
-        std::int32_t* const row_columns = columns + row_start[i];
-        Scalar* const row_values = values + row_start[i];
-        std::int32_t count = 0;  // at most two per kept panel: within room(i)
         kept.clear();
         faces.clear();
         for (const Eigen::Index j : near) {
@@ -159,23 +150,16 @@ SparseRowMatrixOf<Scalar> assemble_yukawa_near_field(const std::vector<Panel>& p
           kept.push_back(j);
           faces.push_back(perm[size_t(j)]);
         }
+        BEMSHAPE_ASSERT(Eigen::Index(kept.size()) == y.row_end(i) - y.row_begin(i),
+                        "exterior near field: the row holds the counted pairs");
         entries.resize(kept.size());
         yukawa.fill_row(perm[size_t(i)], faces, entries);
+        const Eigen::Index first = y.row_begin(i);
         for (size_t t = 0; t < kept.size(); ++t) {
-          const Eigen::Index j = kept[t];
-          const auto& e = entries[t];
-          if (e.double_layer != 0.0) {
-            row_columns[count] = static_cast<std::int32_t>(j);
-            row_values[count++] = static_cast<Scalar>(-e.double_layer);
-          }
-          if (e.single_layer != 0.0)
-            single.emplace_back(static_cast<std::int32_t>(n + j), e.single_layer);
+          y.column()[first + Eigen::Index(t)] = static_cast<std::int32_t>(kept[t]);
+          y.minus_double_layer()[first + Eigen::Index(t)] = static_cast<Scalar>(-entries[t].double_layer);
+          y.single_layer()[first + Eigen::Index(t)] = static_cast<Scalar>(entries[t].single_layer);
         }
-        for (const auto& [c, v] : single) {
-          row_columns[count] = c;
-          row_values[count++] = static_cast<Scalar>(v);
-        }
-        row_size[i] = count;
       } catch (const std::bad_alloc&) {
         out_of_memory = true;
       }
@@ -188,17 +172,13 @@ SparseRowMatrixOf<Scalar> assemble_yukawa_near_field(const std::vector<Panel>& p
   }
   throw_if_cancelled();
   if (out_of_memory) throw ran_out_of_memory(n);
-  // Left uncompressed: each row keeps its counted room, of which the coplanar zeros of Kκ
-  // (flat walls) leave some unused. Compressing would close those gaps but reallocate the
-  // storage to its exact size, holding both copies at once: the solver's peak memory (+0.8
-  // GB at 50000 faces, measured). Products and iterators skip the unused slots.
   return y;
 }
 
-template SparseRowMatrixOf<double> assemble_yukawa_near_field<double>(
+template YukawaNearField<double> assemble_yukawa_near_field<double>(
     const std::vector<Panel>&, const ClusterTree&, double, double, const ProgressCallback&,
     const Eigen::VectorX<Eigen::Index>*);
-template SparseRowMatrixOf<float> assemble_yukawa_near_field<float>(
+template YukawaNearField<float> assemble_yukawa_near_field<float>(
     const std::vector<Panel>&, const ClusterTree&, double, double, const ProgressCallback&,
     const Eigen::VectorX<Eigen::Index>*);
 

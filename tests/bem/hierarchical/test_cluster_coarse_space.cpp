@@ -23,7 +23,8 @@ struct System {
   std::vector<bem::Panel> panels;
   bem::ClusterTree tree;
   bem::HierarchicalMatrix laplace;
-  bem::SparseRowMatrix yukawa;
+  bem::YukawaNearField<double> yukawa;
+  Eigen::MatrixXd yukawa_dense;  // the same, n × 2n
   Eigen::VectorXd half_mass;
 
   explicit System(bool single)
@@ -36,7 +37,8 @@ struct System {
         laplace(tree, bem::GalerkinBlockGenerator<bem::LaplaceKernel>(bem::LaplaceKernel{}, panels, tree),
                 {1e-8, 2.0, single, single}),
         yukawa(bem::assemble_yukawa_near_field(
-            panels, tree, bem::TransmissionParameters::from_shape(0.3, 0.2).kappa)) {
+            panels, tree, bem::TransmissionParameters::from_shape(0.3, 0.2).kappa)),
+        yukawa_dense(yukawa.to_dense()) {
     half_mass.resize(mesh.num_faces());
     for (Eigen::Index p = 0; p < mesh.num_faces(); ++p)
       half_mass(p) = 0.5 * mesh.face_areas()(tree.permutation()[size_t(p)]);
@@ -52,7 +54,7 @@ struct System {
       Eigen::VectorXd interior = -half_mass.cwiseProduct(x.col(j).head(n));
       laplace.multiply_add(densities, interior);
       y.col(j).head(n) = interior;
-      y.col(j).tail(n) = half_mass.cwiseProduct(x.col(j).head(n)) + yukawa * x.col(j);
+      y.col(j).tail(n) = half_mass.cwiseProduct(x.col(j).head(n)) + yukawa_dense * x.col(j);
     }
     return y;
   }

@@ -19,10 +19,12 @@ TEST_CASE("Yukawa near field: every nonzero entry of the dense operator, nothing
   const double kappa = 10.0;
   const auto panels = bem::make_panels(mesh);
   const bem::ClusterTree tree(panels, 16);
-  const bem::SparseRowMatrix y = bem::assemble_yukawa_near_field(panels, tree, kappa);
+  const bem::YukawaNearField<double> y = bem::assemble_yukawa_near_field(panels, tree, kappa);
   const bem::GalerkinOperators<bem::YukawaKernel> yukawa(bem::YukawaKernel{kappa}, panels);
   const Eigen::Index n = mesh.num_faces();
-  const Eigen::MatrixXd sparse = Eigen::MatrixXd(y);
+  REQUIRE(y.rows() == n);
+  REQUIRE(y.cols() == 2 * n);
+  const Eigen::MatrixXd sparse = y.to_dense();
   const auto& perm = tree.permutation();
   // The attenuated pairs are computed 8 at a time (bem/far_field_lanes.hpp), in another
   // order of summation: equal to rounding, 1e−13 of the entry or 1e−15 of the largest.
@@ -39,49 +41,47 @@ TEST_CASE("Yukawa near field: every nonzero entry of the dense operator, nothing
       mismatched += differ(sparse(i, n + j), e.single_layer);
     }
   CHECK(mismatched == 0);
-  CHECK(y.nonZeros() >= nonzero);
-  // Written row by row into the counted room, left uncompressed (no second copy of the
-  // storage): the room holds every entry, and each row's columns are strictly increasing
-  // (Eigen's coefficient lookup searches them).
-  CHECK(!y.isCompressed());
-  CHECK(bem::stored_bytes(y) >= 12 * std::uint64_t(y.nonZeros()));
-  Eigen::Index unsorted = 0;
+  // One pair per panel with a nonzero single layer (Kκ's coplanar zeros are stored with
+  // their Vκ), each row's columns strictly increasing, 20 bytes per pair in double
+  // precision.
+  CHECK(y.pairs() == nonzero);
+  Eigen::Index unsorted = 0, zero_single = 0;
   for (Eigen::Index i = 0; i < n; ++i) {
     Eigen::Index previous = -1;
-    for (bem::SparseRowMatrix::InnerIterator it(y, i); it; ++it) {
-      unsorted += it.col() <= previous;
-      previous = it.col();
-    }
+    y.for_each_in_row(i, [&](Eigen::Index j, double, double v) {
+      unsorted += j <= previous;
+      zero_single += v == 0.0;
+      previous = j;
+    });
   }
   CHECK(unsorted == 0);
+  CHECK(zero_single == 0);
+  CHECK(y.bytes() == 20 * std::uint64_t(y.pairs()) + 8 * std::uint64_t(n + 1));
   CHECK(nonzero < n * n);  // the cutoff drops something on this plate
 
-  // The row sizes the memory guard counts before assembly: two per panel with a nonzero
-  // single-layer entry (every panel within the cutoff has one), at least the stored ones.
-  const Eigen::VectorX<Eigen::Index> sizes =
-      bem::yukawa_near_field_row_sizes(panels, tree, kappa, bem::YukawaAttenuation::negligible);
-  REQUIRE(sizes.size() == n);
+  // The row sizes the memory guard counts before assembly: one pair per panel with a
+  // nonzero single-layer entry (every panel within the cutoff has one).
+  const Eigen::VectorX<Eigen::Index> pairs =
+      bem::yukawa_near_field_row_pairs(panels, tree, kappa, bem::YukawaAttenuation::negligible);
+  REQUIRE(pairs.size() == n);
   Eigen::Index wrong = 0;
   for (Eigen::Index i = 0; i < n; ++i) {
     Eigen::Index single = 0;
     for (Eigen::Index j = 0; j < n; ++j) single += sparse(i, n + j) != 0.0;
-    wrong += sizes(i) != 2 * single;
-    wrong += sizes(i) < y.row(i).nonZeros();
+    wrong += pairs(i) != single;
+    wrong += pairs(i) != y.row_end(i) - y.row_begin(i);
   }
   CHECK(wrong == 0);
 
-  // The single-precision matrix of the H-matrix solver: the same slots, each value the
-  // double one rounded once to float.
-  const bem::SparseRowMatrixSingle y_single = bem::assemble_yukawa_near_field<float>(panels, tree, kappa);
-  REQUIRE(y_single.nonZeros() == y.nonZeros());
-  CHECK(bem::stored_bytes(y_single) == bem::stored_bytes(y) - 4 * std::uint64_t(y.data().allocatedSize()));
+  // The single-precision matrix of the H-matrix solver: the same pairs, each value the
+  // double one rounded once to float, 12 bytes per pair.
+  const bem::YukawaNearField<float> y_single = bem::assemble_yukawa_near_field<float>(panels, tree, kappa);
+  REQUIRE(y_single.pairs() == y.pairs());
+  CHECK(y_single.bytes() == 12 * std::uint64_t(y.pairs()) + 8 * std::uint64_t(n + 1));
   Eigen::Index rounded_differently = 0;
-  for (Eigen::Index i = 0; i < n; ++i) {
-    bem::SparseRowMatrix::InnerIterator it(y, i);
-    bem::SparseRowMatrixSingle::InnerIterator its(y_single, i);
-    for (; it && its; ++it, ++its)
-      rounded_differently += it.col() != its.col() || static_cast<float>(it.value()) != its.value();
-    rounded_differently += bool(it) != bool(its);
-  }
+  for (Eigen::Index s = 0; s < y.pairs(); ++s)
+    rounded_differently += y.column()[s] != y_single.column()[s] ||
+                           static_cast<float>(y.minus_double_layer()[s]) != y_single.minus_double_layer()[s] ||
+                           static_cast<float>(y.single_layer()[s]) != y_single.single_layer()[s];
   CHECK(rounded_differently == 0);
 }
