@@ -105,10 +105,10 @@ BoundarySolution solve_transmission_hmatrix(const geometry::SurfaceMesh& mesh,
   // the walls' thickness far more than the Laplace part does.
   const double negligible = options.aca_tolerance;
   const auto count_start = Clock::now();
-  const Eigen::VectorX<Eigen::Index> exterior_rows =
+  const Eigen::VectorX<Eigen::Index> exterior_pairs =
       yukawa_near_field_row_pairs(panels, tree, parameters.kappa, negligible);
   const double count_seconds = seconds_since(count_start);
-  require_memory(hmatrix_solver_memory_estimate(n, std::uint64_t(exterior_rows.sum()), options),
+  require_memory(hmatrix_solver_memory_estimate(n, std::uint64_t(exterior_pairs.sum()), options),
                  "the hierarchical-matrix BEM system of " + std::to_string(n) + " faces",
                  "use a coarser mesh (larger --max-edge)", options.max_memory_bytes);
 
@@ -131,10 +131,10 @@ BoundarySolution solve_transmission_hmatrix(const geometry::SurfaceMesh& mesh,
   const YukawaNearField<double> yukawa_double =
       options.single_precision ? YukawaNearField<double>()
                                : assemble_yukawa_near_field<double>(panels, tree, parameters.kappa,
-                                                                    negligible, progress, &exterior_rows);
+                                                                    negligible, progress, &exterior_pairs);
   const YukawaNearField<float> yukawa_single =
       options.single_precision ? assemble_yukawa_near_field<float>(panels, tree, parameters.kappa,
-                                                                   negligible, progress, &exterior_rows)
+                                                                   negligible, progress, &exterior_pairs)
                                : YukawaNearField<float>();
   const auto with_exterior = [&](const auto& use) {
     return options.single_precision ? use(yukawa_single) : use(yukawa_double);
