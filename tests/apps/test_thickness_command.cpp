@@ -400,6 +400,23 @@ TEST_CASE("solver hmatrix: the same thickness as --solver dense, GMRES reported 
   CHECK(fast_report["solver"]["method"] == "hmatrix-gmres");
   CHECK(fast_report["solver"]["iterations"].get<int>() > 0);
   CHECK(fast_report["solver"]["residual"].get<double>() <= 1e-8);
+  // The tolerance bounds the preconditioned residual (GMRES preconditioned on the left); the
+  // dense path reports its residual for both.
+  CHECK(fast_report["solver"]["preconditioned_residual"].get<double>() <= 1e-8);
+  CHECK(dense_report["solver"]["preconditioned_residual"].get<double>() ==
+        dense_report["solver"]["residual"].get<double>());
+  // The solve's stages add up to its wall time.
+  double stages_s = 0.0;
+  for (const char* stage : {"interior product", "exterior product", "preconditioner",
+                            "Krylov and the rest"}) {
+    CAPTURE(stage);
+    const double s = fast_report["solver"]["solve_stages"][stage].get<double>();
+    CHECK(s >= 0.0);
+    stages_s += s;
+  }
+  CHECK(fast_report["solver"]["solve_stages"]["interior product"].get<double>() > 0.0);
+  CHECK(stages_s == Approx(fast_report["timing"]["solve"].get<double>()).epsilon(1e-9));
+  CHECK(dense_report["solver"]["solve_stages"].empty());
   CHECK(fast_report["solver"]["operator_mb"].get<double>() > 0.0);
   // The parts add up to the whole. On 1280 faces (leaves of 32, η = 1) no block is far
   // enough apart to be compressed: the far field is empty, every other part is there.
