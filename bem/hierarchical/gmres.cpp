@@ -30,6 +30,7 @@ class ColumnGmres {
       : b_(std::move(b)), x_(std::move(x)), options_(options), m_(std::max(1, options.restart)),
         left_(options.side == PreconditionerSide::left) {
     norm_b_ = b_.norm();
+    true_norm_ = norm_b_;  // the residual of x = 0, until one is computed
     if (norm_b_ == 0.0) {
       x_.setZero();
       result_.converged = true;
@@ -39,7 +40,6 @@ class ColumnGmres {
       next_ = Next::scale;
       wants_ = Wants::m;
     } else if (x_.isZero(0.0)) {
-      true_norm_ = norm_b_;
       start_cycle(b_);  // A·0 = 0: no product needed
     } else {
       request_residual();
@@ -57,10 +57,8 @@ class ColumnGmres {
       case Next::scale:  // result = M⁻¹b
         norm_scale_ = result.norm();
         if (!(norm_scale_ > 0.0)) {  // M⁻¹ annihilates b (or NaN): nothing to measure against
-          true_norm_ = norm_b_;
           finish();
         } else if (x_.isZero(0.0)) {
-          true_norm_ = norm_b_;
           start_cycle(result);
         } else {
           request_residual();

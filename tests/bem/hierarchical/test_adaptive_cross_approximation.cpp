@@ -28,14 +28,20 @@ Eigen::MatrixX3d random_cloud(int n, const Eigen::Vector3d& centre, unsigned see
   return p;
 }
 
+/// The 1/r kernel between the points of x (rows) and y (columns).
+Eigen::MatrixXd inverse_distances(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& y) {
+  Eigen::MatrixXd a(x.rows(), y.rows());
+  for (Eigen::Index i = 0; i < x.rows(); ++i)
+    for (Eigen::Index j = 0; j < y.rows(); ++j) a(i, j) = 1.0 / (x.row(i) - y.row(j)).norm();
+  return a;
+}
+
 }  // namespace
 
 TEST_CASE("ACA: the 1/r kernel between clusters two diameters apart, to the tolerance") {
   const Eigen::MatrixX3d x = random_cloud(150, Eigen::Vector3d::Zero(), 1);
   const Eigen::MatrixX3d y = random_cloud(120, Eigen::Vector3d(3.5, 0.5, 0.0), 2);
-  Eigen::MatrixXd a(150, 120);
-  for (int i = 0; i < 150; ++i)
-    for (int j = 0; j < 120; ++j) a(i, j) = 1.0 / (x.row(i) - y.row(j)).norm();
+  const Eigen::MatrixXd a = inverse_distances(x, y);
   for (const double epsilon : {1e-4, 1e-8}) {
     const auto lr = bem::adaptive_cross_approximation(150, 120, rows_of(a), columns_of(a), epsilon, 60);
     REQUIRE(lr.has_value());
@@ -88,9 +94,7 @@ TEST_CASE("recompression: the truncated SVD's rank and error at tolerances down 
   // clouds 3 diameters apart, whose singular values decay geometrically down to rounding.
   const Eigen::MatrixX3d x = random_cloud(120, Eigen::Vector3d::Zero(), 4);
   const Eigen::MatrixX3d y = random_cloud(90, Eigen::Vector3d(3.0, 0.5, 0.0), 5);
-  Eigen::MatrixXd a(120, 90);
-  for (int i = 0; i < 120; ++i)
-    for (int j = 0; j < 90; ++j) a(i, j) = 1.0 / (x.row(i) - y.row(j)).norm();
+  const Eigen::MatrixXd a = inverse_distances(x, y);
   const Eigen::JacobiSVD<Eigen::MatrixXd> svd(a, Eigen::ComputeThinU | Eigen::ComputeThinV);
   const Eigen::VectorXd& sigma = svd.singularValues();
   const int k = 40;  // redundant: U Vᵀ = A_k split over two copies of its factors

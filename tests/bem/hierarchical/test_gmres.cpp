@@ -22,6 +22,13 @@ Eigen::MatrixXd test_matrix(int n, unsigned seed) {
   a.diagonal().array() += 2.0;  // eigenvalues clustered around 2: well conditioned
   return a;
 }
+
+/// M⁻¹ = A⁻¹ by an LU factorisation of A: GMRES converges in one step on either side.
+bem::LinearOperator exact_inverse(const Eigen::MatrixXd& a) {
+  return [lu = Eigen::PartialPivLU<Eigen::MatrixXd>(a)](const Eigen::VectorXd& v, Eigen::VectorXd& z) {
+    z = lu.solve(v);
+  };
+}
 }  // namespace
 
 TEST_CASE("GMRES: restarted solve of a non-symmetric system, true residual reported") {
@@ -39,10 +46,8 @@ TEST_CASE("GMRES: restarted solve of a non-symmetric system, true residual repor
   CHECK(r.residual == Approx((b - a * x).norm() / b.norm()).epsilon(1e-3).margin(1e-14));
   CHECK((x - a.partialPivLu().solve(b)).norm() < 1e-8 * x.norm());
 
-  const Eigen::PartialPivLU<Eigen::MatrixXd> lu(a);
-  const bem::LinearOperator exact = [&](const Eigen::VectorXd& v, Eigen::VectorXd& z) { z = lu.solve(v); };
   Eigen::VectorXd x2;
-  const bem::GmresResult r2 = bem::gmres(op, exact, b, x2, options);
+  const bem::GmresResult r2 = bem::gmres(op, exact_inverse(a), b, x2, options);
   CHECK(r2.converged);
   CHECK(r2.iterations == 1);
 }
@@ -80,10 +85,8 @@ TEST_CASE("GMRES preconditioned on the left: the tolerance bounds M⁻¹ times t
   CHECK((x - exact).norm() <= 1e-8 * scaled_b.norm());
 
   // An exact preconditioner: M⁻¹A = I, one step.
-  const Eigen::PartialPivLU<Eigen::MatrixXd> lu(a);
-  const bem::LinearOperator inverse = [&](const Eigen::VectorXd& v, Eigen::VectorXd& z) { z = lu.solve(v); };
   Eigen::VectorXd x2;
-  const bem::GmresResult r2 = bem::gmres(op, inverse, b, x2, options);
+  const bem::GmresResult r2 = bem::gmres(op, exact_inverse(a), b, x2, options);
   CHECK(r2.converged);
   CHECK(r2.iterations == 1);
   CHECK((x2 - exact).norm() <= 1e-10 * exact.norm());
