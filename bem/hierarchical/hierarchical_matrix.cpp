@@ -85,8 +85,7 @@ HierarchicalMatrix::HierarchicalMatrix(const ClusterTree& row_tree, const Cluste
             options.aca_tolerance, max_rank);
         if (aca) {
           if (options.single_precision_factors) {
-            b.u_single = aca->U.cast<float>();
-            b.v_single = aca->V.cast<float>();
+            b.factors = AdaptivePrecisionFactors(aca->U, aca->V, options.fixed_point_columns);
             b.single_precision = true;
           } else {
             b.low_rank = std::move(*aca);
@@ -127,13 +126,19 @@ HierarchicalMatrix::HierarchicalMatrix(const ClusterTree& row_tree, const Cluste
     (b.is_low_rank ? stats_.low_rank_seconds : stats_.dense_seconds) += block_seconds[k];
     if (b.is_low_rank) {
       ++stats_.admissible_blocks;
-      const bool single = b.single_precision;
-      const auto entries = std::uint64_t(single ? b.u_single.size() + b.v_single.size()
-                                                : b.low_rank.U.size() + b.low_rank.V.size());
-      stats_.low_rank_entries += entries;
-      stats_.low_rank_bytes += (single ? 4 : 8) * entries;
-      stats_.max_rank =
-          std::max(stats_.max_rank, single ? b.u_single.cols() : b.low_rank.rank());
+      if (b.single_precision) {
+        stats_.low_rank_entries += b.factors.entries();
+        stats_.low_rank_bytes += b.factors.bytes();
+        stats_.single_columns += std::uint64_t(b.factors.columns().single);
+        stats_.fixed16_columns += std::uint64_t(b.factors.columns().fixed16);
+        stats_.fixed8_columns += std::uint64_t(b.factors.columns().fixed8);
+        stats_.max_rank = std::max(stats_.max_rank, b.factors.rank());
+      } else {
+        const auto entries = std::uint64_t(b.low_rank.U.size() + b.low_rank.V.size());
+        stats_.low_rank_entries += entries;
+        stats_.low_rank_bytes += 8 * entries;
+        stats_.max_rank = std::max(stats_.max_rank, b.low_rank.rank());
+      }
     } else {
       ++stats_.dense_blocks;
       const auto entries = std::uint64_t(b.single_precision ? b.dense_single.size() : b.dense.size());
@@ -160,18 +165,12 @@ void add_single_precision_product(const Eigen::MatrixXf& a, const Eigen::MatrixX
   }
 }
 
-/// product = U (Vᵀ x) for factors stored in single precision, converted as above.
-void single_precision_product(const Eigen::MatrixXf& u, const Eigen::MatrixXf& v,
-                              const Eigen::MatrixXd& x, Eigen::MatrixXd& product,
-                              Eigen::MatrixXd& chunk) {
-  Eigen::MatrixXd t = Eigen::MatrixXd::Zero(v.cols(), x.cols());
-  for (Eigen::Index i = 0; i < v.rows(); i += kConvertedRows) {
-    const Eigen::Index m = std::min(kConvertedRows, v.rows() - i);
-    chunk = v.middleRows(i, m).cast<double>();
-    t.noalias() += chunk.transpose() * x.middleRows(i, m);
-  }
-  product.setZero(u.rows(), x.cols());
-  add_single_precision_product(u, t, product, chunk);
+/// product = U (Vᵀ x) for factors stored in single precision or narrower.
+void narrow_factors_product(const AdaptivePrecisionFactors& factors, const Eigen::MatrixXd& x,
+                            Eigen::MatrixXd& product, Eigen::MatrixXd& t, Eigen::MatrixXd& chunk) {
+  factors.multiply_v_transpose(x, t, chunk);
+  product.setZero(factors.rows(), x.cols());
+  factors.add_u_product(t, product, chunk);
 }
 
 }  // namespace
@@ -198,14 +197,14 @@ void HierarchicalMatrix::multiply_add(const Eigen::Ref<const Eigen::MatrixXd>& x
   {
     Eigen::MatrixXd& mine = partial[static_cast<size_t>(omp_get_thread_num())];
     mine = Eigen::MatrixXd::Zero(rows_, y.cols());
-    Eigen::MatrixXd product, chunk;
+    Eigen::MatrixXd product, t, chunk;
 #pragma omp for schedule(static, 1)
     for (std::size_t k = 0; k < blocks_.size(); ++k) {
       const Block& b = blocks_[k];
       const Eigen::MatrixXd xs = gather(x, b);
       const Eigen::Index m = b.row_end - b.row_begin;
       if (b.is_low_rank && b.single_precision)
-        single_precision_product(b.u_single, b.v_single, xs, product, chunk);
+        narrow_factors_product(b.factors, xs, product, t, chunk);
       else if (b.is_low_rank)
         product.noalias() = b.low_rank.U * (b.low_rank.V.transpose() * xs);
       else if (b.single_precision) {
@@ -251,8 +250,7 @@ std::vector<Eigen::MatrixXd> HierarchicalMatrix::diagonal_blocks(
         auto target = out[t].block(r0 - begin, d * size + (c0 - begin), r1 - r0, c1 - c0);
         const Eigen::Index u0 = r0 - b.row_begin, v0 = d * n + (c0 - b.col_begin);
         if (b.is_low_rank && b.single_precision)
-          target.noalias() += b.u_single.middleRows(u0, r1 - r0).cast<double>() *
-                              b.v_single.middleRows(v0, c1 - c0).cast<double>().transpose();
+          target.noalias() += b.factors.u_rows(u0, r1 - r0) * b.factors.v_rows(v0, c1 - c0).transpose();
         else if (b.is_low_rank)
           target.noalias() += b.low_rank.U.middleRows(u0, r1 - r0) *
                               b.low_rank.V.middleRows(v0, c1 - c0).transpose();
@@ -311,24 +309,15 @@ HierarchicalMatrix::GroupedColumns HierarchicalMatrix::group_columns(std::vector
                 reduced.row(i).segment(d * nc, nc);
         continue;
       }
-      const Eigen::Index rank = b.single_precision ? b.u_single.cols() : b.low_rank.rank();
+      const Eigen::MatrixXd u = b.single_precision ? b.factors.u_rows(0, m) : b.low_rank.U;
+      const Eigen::MatrixXd v = b.single_precision ? b.factors.v_rows(0, g * n) : b.low_rank.V;
+      const Eigen::Index rank = u.cols();
       reduced = Eigen::MatrixXd::Zero(g * nc, rank);  // EᵀV
       for (int d = 0; d < g; ++d)
-        for (Eigen::Index j = 0; j < n; ++j) {
-          const Eigen::Index a = d * nc + of[size_t(b.col_begin + j)] - c0;
-          if (b.single_precision)
-            reduced.row(a) += b.v_single.row(d * n + j).cast<double>();
-          else
-            reduced.row(a) += b.low_rank.V.row(d * n + j);
-        }
+        for (Eigen::Index j = 0; j < n; ++j)
+          reduced.row(d * nc + of[size_t(b.col_begin + j)] - c0) += v.row(d * n + j);
       left = Eigen::MatrixXd::Zero(nr, rank);  // EᵀU
-      for (Eigen::Index i = 0; i < m; ++i) {
-        const Eigen::Index a = of[size_t(b.row_begin + i)] - r0;
-        if (b.single_precision)
-          left.row(a) += b.u_single.row(i).cast<double>();
-        else
-          left.row(a) += b.low_rank.U.row(i);
-      }
+      for (Eigen::Index i = 0; i < m; ++i) left.row(of[size_t(b.row_begin + i)] - r0) += u.row(i);
       for (int d = 0; d < g; ++d)
         mine.block(r0, d * groups + c0, nr, nc).noalias() +=
             left * reduced.middleRows(d * nc, nc).transpose();
@@ -373,7 +362,7 @@ void HierarchicalMatrix::multiply_add_grouped(const GroupedColumns& grouped,
         mine.middleRows(b.row_begin, m).noalias() += b.low_rank.U * t;
         continue;
       }
-      add_single_precision_product(b.u_single, t, mine.middleRows(b.row_begin, m), chunk);
+      b.factors.add_u_product(t, mine.middleRows(b.row_begin, m), chunk);
     }
   }
   for (const Eigen::MatrixXd& p : partial) y += p;

@@ -18,6 +18,7 @@
 #include <Eigen/Core>
 
 #include "bem/hierarchical/adaptive_cross_approximation.hpp"
+#include "bem/hierarchical/adaptive_precision_factors.hpp"
 #include "bem/hierarchical/block_partition.hpp"
 #include "bem/hierarchical/cluster_tree.hpp"
 #include "core/progress.hpp"
@@ -52,6 +53,11 @@ struct HierarchicalMatrixOptions {
   /// Rounding an entry changes it by at most 6e−8 relative, less than the factors' effect;
   /// products are computed in double precision.
   bool single_precision_near_field = false;
+  /// With single_precision_factors: the columns of small singular value in 16- or 8-bit
+  /// fixed point where their rounding stays within that of the leading column in single
+  /// precision (bem/hierarchical/adaptive_precision_factors.hpp): the block's storage error
+  /// at most doubles, its bytes drop by a third or more.
+  bool fixed_point_columns = true;
 };
 
 /// Storage statistics.
@@ -59,7 +65,10 @@ struct HierarchicalMatrixStats {
   std::uint64_t dense_entries = 0;     ///< entries of the dense (near-field) blocks
   std::uint64_t dense_bytes = 0;       ///< their storage: 4 or 8 bytes per entry
   std::uint64_t low_rank_entries = 0;  ///< entries of the U and V factors
-  std::uint64_t low_rank_bytes = 0;    ///< their storage: 4 or 8 bytes per entry
+  std::uint64_t low_rank_bytes = 0;    ///< their storage: 1, 2, 4 or 8 bytes per entry
+  /// Columns of the low-rank factors in single precision, 16- and 8-bit fixed point
+  /// (AdaptivePrecisionFactors; all zero when the factors are in double precision).
+  std::uint64_t single_columns = 0, fixed16_columns = 0, fixed8_columns = 0;
   std::uint64_t full_entries = 0;      ///< N·g·N, what a dense matrix would hold
   Eigen::Index max_rank = 0;
   std::size_t admissible_blocks = 0, dense_blocks = 0;
@@ -129,9 +138,9 @@ class HierarchicalMatrix {
     Eigen::MatrixXd dense;  ///< o|τ| × g|σ|, empty for a low-rank block or in single precision
     Eigen::MatrixXf dense_single;  ///< the same in single precision
     LowRankBlock low_rank;  ///< U: o|τ|×k, V: g|σ|×k (empty when stored in single precision)
-    Eigen::MatrixXf u_single, v_single;  ///< the same factors in single precision
+    AdaptivePrecisionFactors factors;  ///< the same factors in single precision or narrower
     bool is_low_rank = false;
-    /// The block is stored in single precision: u_single, v_single (rank may be 0) or
+    /// The block is stored in single precision or narrower: factors (rank may be 0) or
     /// dense_single.
     bool single_precision = false;
   };

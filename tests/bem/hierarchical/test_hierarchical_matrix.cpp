@@ -19,12 +19,13 @@ namespace {
 /// statistics.
 bem::HierarchicalMatrixStats check_against_dense(const geometry::SurfaceMesh& mesh,
                                                  double epsilon, bool single = false,
-                                                 double tolerance = 0.0, bool single_near = false) {
+                                                 double tolerance = 0.0, bool single_near = false,
+                                                 bool fixed_point = false) {
   if (tolerance == 0.0) tolerance = 10.0 * epsilon;
   const auto panels = bem::make_panels(mesh);
   const bem::ClusterTree tree(panels, 16);
   const bem::GalerkinBlockGenerator<bem::LaplaceKernel> generator(bem::LaplaceKernel{}, panels, tree);
-  const bem::HierarchicalMatrix h(tree, generator, {epsilon, 1.0, single, single_near});
+  const bem::HierarchicalMatrix h(tree, generator, {epsilon, 1.0, single, single_near, fixed_point});
   const Eigen::Index n = mesh.num_faces();
   Eigen::MatrixXd dense(n, 2 * n);
   generator.fill(0, n, 0, n, dense);
@@ -89,6 +90,19 @@ TEST_CASE("H-matrix with single-precision factors: half the far-field bytes, err
   CHECK(full.dense_bytes == 8 * full.dense_entries);
   CHECK(both.dense_bytes == 4 * both.dense_entries);
   CHECK(both.low_rank_bytes == single.low_rank_bytes);
+
+  // The columns of small singular value in 16- and 8-bit fixed point
+  // (bem/hierarchical/adaptive_precision_factors.hpp): their rounding adds at most the
+  // leading column's single-precision rounding to each block, so the product stays within
+  // the same bound while the factors shrink.
+  const bem::HierarchicalMatrixStats narrow = check_against_dense(sphere, 1e-8, true, 1e-6, true, true);
+  CHECK(narrow.low_rank_entries == single.low_rank_entries);
+  CHECK(narrow.single_columns + narrow.fixed16_columns + narrow.fixed8_columns ==
+        single.single_columns);
+  CHECK(single.fixed16_columns + single.fixed8_columns == 0);
+  CHECK(narrow.fixed16_columns > 0);
+  CHECK(narrow.fixed8_columns > 0);
+  CHECK(narrow.low_rank_bytes < single.low_rank_bytes);
 }
 
 namespace {

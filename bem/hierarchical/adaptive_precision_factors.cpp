@@ -1,0 +1,159 @@
+#include "bem/hierarchical/adaptive_precision_factors.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "core/assert.hpp"
+
+namespace bemshape::bem {
+
+namespace {
+
+/// Rows converted to double per step of a product: the chunk stays in the first-level cache.
+constexpr Eigen::Index kConvertedRows = 128;
+
+/// x in fixed point: q_r = round(x_r/s), s = max|x|/(2^{b−1} − 1), b the width of Int. Writes q
+/// (if not null) and s; returns the rounding error ‖x − s q‖ (0 for a zero column).
+template <class Int>
+double to_fixed_point(const Eigen::Ref<const Eigen::VectorXd>& x, Int* q, double& scale) {
+  const double largest = x.cwiseAbs().maxCoeff();
+  scale = largest / double(std::numeric_limits<Int>::max());
+  if (!(scale > 0.0)) {
+    if (q) std::fill(q, q + x.size(), Int(0));
+    scale = 0.0;
+    return 0.0;
+  }
+  double error2 = 0.0;
+  for (Eigen::Index r = 0; r < x.size(); ++r) {
+    const double level = std::nearbyint(x(r) / scale);
+    if (q) q[r] = static_cast<Int>(level);
+    const double e = x(r) - scale * level;
+    error2 += e * e;
+  }
+  return std::sqrt(error2);
+}
+
+/// Error of the column pair (u, v) stored with rounding errors eu, ev:
+/// ‖ũ ṽᵀ − u vᵀ‖ ≤ eu (‖v‖ + ev) + ‖u‖ ev.
+double column_error(double u_norm, double eu, double v_norm, double ev) {
+  return eu * (v_norm + ev) + u_norm * ev;
+}
+
+}  // namespace
+
+AdaptivePrecisionFactors::AdaptivePrecisionFactors(const Eigen::MatrixXd& u, const Eigen::MatrixXd& v,
+                                                   bool fixed_point)
+    : rows_(u.rows()), cols_(v.rows()) {
+  BEMSHAPE_ASSERT(u.cols() == v.cols(), "low-rank factors: U and V need the same number of columns");
+  const Eigen::Index r = u.cols();
+  // Width in bytes each column allows: 1, 2 or 4.
+  std::vector<int> width(static_cast<std::size_t>(r), 4);
+  if (fixed_point && r > 0) {
+    const double budget = std::ldexp(u.col(0).norm() * v.col(0).norm(), -23) / double(r);
+    for (Eigen::Index i = 0; i < r; ++i) {
+      const double un = u.col(i).norm(), vn = v.col(i).norm();
+      double scale = 0.0;
+      const double eu8 = to_fixed_point<std::int8_t>(u.col(i), nullptr, scale);
+      const double ev8 = to_fixed_point<std::int8_t>(v.col(i), nullptr, scale);
+      if (column_error(un, eu8, vn, ev8) <= budget) {
+        width[size_t(i)] = 1;
+        continue;
+      }
+      const double eu16 = to_fixed_point<std::int16_t>(u.col(i), nullptr, scale);
+      const double ev16 = to_fixed_point<std::int16_t>(v.col(i), nullptr, scale);
+      if (column_error(un, eu16, vn, ev16) <= budget) width[size_t(i)] = 2;
+    }
+  }
+  // Contiguous ranges: a column takes the widest width of itself and every later column.
+  for (Eigen::Index i = r - 2; i >= 0; --i)
+    width[size_t(i)] = std::max(width[size_t(i)], width[size_t(i + 1)]);
+  columns_.single = Eigen::Index(std::count(width.begin(), width.end(), 4));
+  columns_.fixed16 = Eigen::Index(std::count(width.begin(), width.end(), 2));
+  columns_.fixed8 = Eigen::Index(std::count(width.begin(), width.end(), 1));
+
+  const auto store = [&](const Eigen::MatrixXd& x, Factor& f) {
+    const Eigen::Index n = x.rows(), first16 = columns_.single, first8 = first16 + columns_.fixed16;
+    f.single = x.leftCols(columns_.single).cast<float>();
+    f.fixed16.resize(n, columns_.fixed16);
+    f.scale16.resize(columns_.fixed16);
+    for (Eigen::Index c = 0; c < columns_.fixed16; ++c)
+      to_fixed_point<std::int16_t>(x.col(first16 + c), f.fixed16.col(c).data(), f.scale16(c));
+    f.fixed8.resize(n, columns_.fixed8);
+    f.scale8.resize(columns_.fixed8);
+    for (Eigen::Index c = 0; c < columns_.fixed8; ++c)
+      to_fixed_point<std::int8_t>(x.col(first8 + c), f.fixed8.col(c).data(), f.scale8(c));
+  };
+  store(u, u_);
+  store(v, v_);
+}
+
+void AdaptivePrecisionFactors::Factor::decode(Eigen::Index begin, Eigen::Index count,
+                                              Eigen::Ref<Eigen::MatrixXd> out) const {
+  const Eigen::Index first16 = single.cols(), first8 = first16 + fixed16.cols();
+  // Column by column: contiguous reads and writes, which the compiler vectorises.
+  for (Eigen::Index c = 0; c < single.cols(); ++c) {
+    const float* from = single.col(c).data() + begin;
+    double* to = out.col(c).data();
+    for (Eigen::Index r = 0; r < count; ++r) to[r] = double(from[r]);
+  }
+  for (Eigen::Index c = 0; c < fixed16.cols(); ++c) {
+    const std::int16_t* from = fixed16.col(c).data() + begin;
+    double* to = out.col(first16 + c).data();
+    const double s = scale16(c);
+    for (Eigen::Index r = 0; r < count; ++r) to[r] = s * double(from[r]);
+  }
+  for (Eigen::Index c = 0; c < fixed8.cols(); ++c) {
+    const std::int8_t* from = fixed8.col(c).data() + begin;
+    double* to = out.col(first8 + c).data();
+    const double s = scale8(c);
+    for (Eigen::Index r = 0; r < count; ++r) to[r] = s * double(from[r]);
+  }
+}
+
+std::uint64_t AdaptivePrecisionFactors::Factor::bytes() const {
+  return 4 * std::uint64_t(single.size()) + 2 * std::uint64_t(fixed16.size()) +
+         std::uint64_t(fixed8.size()) + 8 * std::uint64_t(scale16.size() + scale8.size());
+}
+
+void AdaptivePrecisionFactors::multiply_v_transpose(const Eigen::Ref<const Eigen::MatrixXd>& x,
+                                                    Eigen::MatrixXd& t, Eigen::MatrixXd& chunk) const {
+  BEMSHAPE_ASSERT(x.rows() == cols_, "low-rank product: x must have one row per column of the block");
+  t.setZero(rank(), x.cols());
+  for (Eigen::Index i = 0; i < cols_; i += kConvertedRows) {
+    const Eigen::Index m = std::min(kConvertedRows, cols_ - i);
+    chunk.resize(m, rank());
+    v_.decode(i, m, chunk);
+    t.noalias() += chunk.transpose() * x.middleRows(i, m);
+  }
+}
+
+void AdaptivePrecisionFactors::add_u_product(const Eigen::Ref<const Eigen::MatrixXd>& t,
+                                             Eigen::Ref<Eigen::MatrixXd> out,
+                                             Eigen::MatrixXd& chunk) const {
+  BEMSHAPE_ASSERT(t.rows() == rank() && out.rows() == rows_ && out.cols() == t.cols(),
+                  "low-rank product: t must be rank × k and out rows × k");
+  for (Eigen::Index i = 0; i < rows_; i += kConvertedRows) {
+    const Eigen::Index m = std::min(kConvertedRows, rows_ - i);
+    chunk.resize(m, rank());
+    u_.decode(i, m, chunk);
+    out.middleRows(i, m).noalias() += chunk * t;
+  }
+}
+
+Eigen::MatrixXd AdaptivePrecisionFactors::u_rows(Eigen::Index begin, Eigen::Index count) const {
+  Eigen::MatrixXd out(count, rank());
+  u_.decode(begin, count, out);
+  return out;
+}
+
+Eigen::MatrixXd AdaptivePrecisionFactors::v_rows(Eigen::Index begin, Eigen::Index count) const {
+  Eigen::MatrixXd out(count, rank());
+  v_.decode(begin, count, out);
+  return out;
+}
+
+std::uint64_t AdaptivePrecisionFactors::bytes() const { return u_.bytes() + v_.bytes(); }
+
+}  // namespace bemshape::bem

@@ -1,0 +1,83 @@
+#pragma once
+// Low-rank factors A ≈ U Vᵀ stored column by column in the narrowest of three formats the
+// block's accuracy allows: single precision, or 16- or 8-bit fixed point with one scale per
+// column and factor.
+//
+// After recompression (adaptive_cross_approximation.hpp) U = [σ_1 û_1, …, σ_r û_r] with σ
+// decreasing and V orthonormal, so column i weighs σ_i in the block: rounding u_i and v_i
+// to relative accuracy δ changes the block by about σ_i·δ. Single precision rounds every
+// entry to 2^−24 relative, so the leading column alone is stored with an error up to
+//   β = 2^−23 ‖u_1‖ ‖v_1‖   (2^−24 for each factor),
+// and the columns whose σ_i is several decades below σ_1 carry far more digits than that
+// error leaves meaningful. Column i is therefore stored in b-bit fixed point (b = 8 or 16:
+// q = round(x/s), s = max|x|/(2^{b−1} − 1)) when its measured rounding error
+//   e_i = ‖ũ_i ṽ_iᵀ − u_i v_iᵀ‖_F ≤ ‖ũ_i − u_i‖ ‖ṽ_i‖ + ‖u_i‖ ‖ṽ_i − v_i‖
+// is at most β/r. The fixed-point columns together thus change the block by at most β:
+// the stored block's error is at most twice the bound of single precision alone (whose
+// effect on products, about 4e−7 relative, HierarchicalMatrixOptions documents). On
+// Laplace blocks at ε = 1e−8 that moves the tail of the columns (σ_i/σ_1 below about
+// 1e−4) to two bytes and the last decades to one (docs/benchmarks.md has the measured
+// memory).
+//
+// The columns are kept in three contiguous ranges — single precision, 16-bit, 8-bit — so a
+// column takes the widest format any later column needs (the σ_i decrease, so this is
+// rarely wider than its own). Products are computed in double precision; the stored
+// entries are converted a few rows at a time and no double copy is held.
+
+#include <cstdint>
+
+#include <Eigen/Core>
+
+namespace bemshape::bem {
+
+class AdaptivePrecisionFactors {
+ public:
+  /// Columns per format.
+  struct Columns {
+    Eigen::Index single = 0, fixed16 = 0, fixed8 = 0;
+  };
+
+  AdaptivePrecisionFactors() = default;
+  /// U (m×r) and V (n×r) with U's column norms decreasing (recompress's output, V
+  /// orthonormal; any factors are stored correctly, the rule only then saves most). With
+  /// `fixed_point` false every column is kept in single precision.
+  AdaptivePrecisionFactors(const Eigen::MatrixXd& u, const Eigen::MatrixXd& v, bool fixed_point = true);
+
+  Eigen::Index rows() const { return rows_; }
+  Eigen::Index cols() const { return cols_; }
+  Eigen::Index rank() const { return columns_.single + columns_.fixed16 + columns_.fixed8; }
+  const Columns& columns() const { return columns_; }
+
+  /// t = Vᵀ x (rank × k) for x of cols() rows. `chunk` is scratch space.
+  void multiply_v_transpose(const Eigen::Ref<const Eigen::MatrixXd>& x, Eigen::MatrixXd& t,
+                            Eigen::MatrixXd& chunk) const;
+  /// out += U t for t of rank() rows (out: rows() × t.cols()).
+  void add_u_product(const Eigen::Ref<const Eigen::MatrixXd>& t, Eigen::Ref<Eigen::MatrixXd> out,
+                     Eigen::MatrixXd& chunk) const;
+
+  /// Rows [begin, begin + count) of the stored U or V, in double precision.
+  Eigen::MatrixXd u_rows(Eigen::Index begin, Eigen::Index count) const;
+  Eigen::MatrixXd v_rows(Eigen::Index begin, Eigen::Index count) const;
+
+  /// Bytes of the stored factors and their scales.
+  std::uint64_t bytes() const;
+  /// Entries of U and V, (rows + cols)·rank.
+  std::uint64_t entries() const { return std::uint64_t(rows_ + cols_) * std::uint64_t(rank()); }
+
+ private:
+  /// One factor (U or V): its columns in the three formats, with the fixed-point scales.
+  struct Factor {
+    Eigen::MatrixXf single;
+    Eigen::Matrix<std::int16_t, Eigen::Dynamic, Eigen::Dynamic> fixed16;
+    Eigen::Matrix<std::int8_t, Eigen::Dynamic, Eigen::Dynamic> fixed8;
+    Eigen::VectorXd scale16, scale8;
+    /// Rows [begin, begin + count) in double precision (count × rank).
+    void decode(Eigen::Index begin, Eigen::Index count, Eigen::Ref<Eigen::MatrixXd> out) const;
+    std::uint64_t bytes() const;
+  };
+  Factor u_, v_;
+  Eigen::Index rows_ = 0, cols_ = 0;
+  Columns columns_;
+};
+
+}  // namespace bemshape::bem
