@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <vector>
 
 #include "core/assert.hpp"
 
@@ -48,31 +47,35 @@ AdaptivePrecisionFactors::AdaptivePrecisionFactors(const Eigen::MatrixXd& u, con
     : rows_(u.rows()), cols_(v.rows()) {
   BEMSHAPE_ASSERT(u.cols() == v.cols(), "low-rank factors: U and V need the same number of columns");
   const Eigen::Index r = u.cols();
-  // Width in bytes each column allows: 1, 2 or 4.
-  std::vector<int> width(static_cast<std::size_t>(r), 4);
+  columns_.single = r;
   if (fixed_point && r > 0) {
-    const double budget = std::ldexp(u.col(0).norm() * v.col(0).norm(), -23) / double(r);
-    for (Eigen::Index i = 0; i < r; ++i) {
+    // Rounding error of each column pair in 16- and 8-bit fixed point, and their sums over
+    // the columns from i on: e16_tail(i) = Σ_{l ≥ i} e16_l (likewise e8_tail).
+    Eigen::VectorXd e16_tail = Eigen::VectorXd::Zero(r + 1), e8_tail = Eigen::VectorXd::Zero(r + 1);
+    for (Eigen::Index i = r - 1; i >= 0; --i) {
       const double un = u.col(i).norm(), vn = v.col(i).norm();
       double scale = 0.0;
-      const double eu8 = to_fixed_point<std::int8_t>(u.col(i), nullptr, scale);
-      const double ev8 = to_fixed_point<std::int8_t>(v.col(i), nullptr, scale);
-      if (column_error(un, eu8, vn, ev8) <= budget) {
-        width[size_t(i)] = 1;
-        continue;
-      }
-      const double eu16 = to_fixed_point<std::int16_t>(u.col(i), nullptr, scale);
-      const double ev16 = to_fixed_point<std::int16_t>(v.col(i), nullptr, scale);
-      if (column_error(un, eu16, vn, ev16) <= budget) width[size_t(i)] = 2;
+      const double e16 = column_error(un, to_fixed_point<std::int16_t>(u.col(i), nullptr, scale), vn,
+                                      to_fixed_point<std::int16_t>(v.col(i), nullptr, scale));
+      const double e8 = column_error(un, to_fixed_point<std::int8_t>(u.col(i), nullptr, scale), vn,
+                                     to_fixed_point<std::int8_t>(v.col(i), nullptr, scale));
+      e16_tail(i) = e16_tail(i + 1) + e16;
+      e8_tail(i) = e8_tail(i + 1) + e8;
     }
+    // The split [0, a) single, [a, b) 16-bit, [b, r) 8-bit with the fewest bytes among those
+    // whose fixed-point columns add up to at most β: O(r²) candidates, r is a block's rank.
+    const double budget = std::ldexp(u.col(0).norm() * v.col(0).norm(), -23);
+    Eigen::Index best_bytes = 4 * r;
+    for (Eigen::Index a = 0; a <= r; ++a)
+      for (Eigen::Index b = a; b <= r; ++b) {
+        const double error = (e16_tail(a) - e16_tail(b)) + e8_tail(b);
+        const Eigen::Index bytes = 4 * a + 2 * (b - a) + (r - b);
+        if (error <= budget && bytes < best_bytes) {
+          best_bytes = bytes;
+          columns_ = {a, b - a, r - b};
+        }
+      }
   }
-  // Contiguous ranges: a column takes the widest width of itself and every later column.
-  for (Eigen::Index i = r - 2; i >= 0; --i)
-    width[size_t(i)] = std::max(width[size_t(i)], width[size_t(i + 1)]);
-  columns_.single = Eigen::Index(std::count(width.begin(), width.end(), 4));
-  columns_.fixed16 = Eigen::Index(std::count(width.begin(), width.end(), 2));
-  columns_.fixed8 = Eigen::Index(std::count(width.begin(), width.end(), 1));
-
   const auto store = [&](const Eigen::MatrixXd& x, Factor& f) {
     const Eigen::Index n = x.rows(), first16 = columns_.single, first8 = first16 + columns_.fixed16;
     f.single = x.leftCols(columns_.single).cast<float>();

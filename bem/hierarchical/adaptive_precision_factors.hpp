@@ -9,20 +9,21 @@
 // entry to 2^−24 relative, so the leading column alone is stored with an error up to
 //   β = 2^−23 ‖u_1‖ ‖v_1‖   (2^−24 for each factor),
 // and the columns whose σ_i is several decades below σ_1 carry far more digits than that
-// error leaves meaningful. Column i is therefore stored in b-bit fixed point (b = 8 or 16:
-// q = round(x/s), s = max|x|/(2^{b−1} − 1)) when its measured rounding error
-//   e_i = ‖ũ_i ṽ_iᵀ − u_i v_iᵀ‖_F ≤ ‖ũ_i − u_i‖ ‖ṽ_i‖ + ‖u_i‖ ‖ṽ_i − v_i‖
-// is at most β/r. The fixed-point columns together thus change the block by at most β:
-// the stored block's error is at most twice the bound of single precision alone (whose
-// effect on products, about 4e−7 relative, HierarchicalMatrixOptions documents). On
-// Laplace blocks at ε = 1e−8 that moves the tail of the columns (σ_i/σ_1 below about
-// 1e−4) to two bytes and the last decades to one (docs/benchmarks.md has the measured
-// memory).
+// error leaves meaningful. Those are stored in b-bit fixed point (b = 16 or 8: q =
+// round(x/s), s = max|x|/(2^{b−1} − 1)), each column pair with its measured rounding error
+//   e_i = ‖ũ_i ṽ_iᵀ − u_i v_iᵀ‖_F ≤ ‖ũ_i − u_i‖ ‖ṽ_i‖ + ‖u_i‖ ‖ṽ_i − v_i‖,
+// under the condition Σ_{fixed-point i} e_i ≤ β. The fixed-point columns thus change the
+// block by at most β: the stored block's error is at most twice the bound of single
+// precision alone (whose effect on products, about 4e−7 relative,
+// HierarchicalMatrixOptions documents).
 //
-// The columns are kept in three contiguous ranges — single precision, 16-bit, 8-bit — so a
-// column takes the widest format any later column needs (the σ_i decrease, so this is
-// rarely wider than its own). Products are computed in double precision; the stored
-// entries are converted a few rows at a time and no double copy is held.
+// The columns are kept in three contiguous ranges — [0, a) single precision, [a, b) 16-bit,
+// [b, r) 8-bit — and (a, b) is the split with the fewest bytes whose errors add up to at
+// most β (all r² splits are tried; r is a block's rank). Since the σ_i decrease, the tail
+// goes to 8 bits and the middle to 16. On Laplace blocks at ε = 1e−8 that is about half
+// the columns (docs/benchmarks.md has the measured memory). Products are computed in
+// double precision; the stored entries are converted a few rows at a time and no double
+// copy is held.
 
 #include <cstdint>
 

@@ -4,6 +4,8 @@
 //   make_test_mesh sphere RADIUS MAX_EDGE OUT.stl
 //   make_test_mesh shell INNER_RADIUS OUTER_RADIUS MAX_EDGE OUT.stl   (cavity inside)
 //   make_test_mesh box LX LY LZ MAX_EDGE OUT.stl        (centred at the origin)
+//   make_test_mesh hollow-box SIDE WALL MAX_EDGE OUT.stl (a cube of side SIDE with a cubic
+//                                                          cavity: walls WALL thick)
 //   make_test_mesh cylinder RADIUS LENGTH MAX_EDGE OUT.stl
 #include <cstdlib>
 #include <iostream>
@@ -26,6 +28,12 @@ int main(int argc, char** argv) {
     const Eigen::Vector3d half(arg(2) / 2, arg(3) / 2, arg(4) / 2);
     mesh = geometry::make_box(-half, half, arg(5));
     out = argv[6];
+  } else if (kind == "hollow-box" && argc == 6 && arg(3) > 0 && 2 * arg(3) < arg(2)) {
+    const Eigen::Vector3d half = Eigen::Vector3d::Constant(arg(2) / 2);
+    const Eigen::Vector3d inner = half - Eigen::Vector3d::Constant(arg(3));
+    mesh = geometry::concatenated(geometry::make_box(-half, half, arg(4)),
+                                  geometry::with_flipped_orientation(geometry::make_box(-inner, inner, arg(4))));
+    out = argv[5];
   } else if (kind == "shell" && argc == 6) {
     mesh = geometry::make_spherical_shell(arg(2), arg(3),
                                           geometry::geodesic_frequency_for_edge(arg(2), arg(4)),
@@ -37,7 +45,7 @@ int main(int argc, char** argv) {
   } else {
     std::cerr
         << "usage: make_test_mesh sphere R EDGE OUT | shell R1 R2 EDGE OUT | box LX LY LZ EDGE "
-           "OUT | cylinder R L EDGE OUT\n";
+           "OUT | hollow-box SIDE WALL EDGE OUT | cylinder R L EDGE OUT\n";
     return 2;
   }
   output::write_binary_stl(out, mesh.vertices(), mesh.faces());
