@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <optional>
+#include <type_traits>
 #include <sstream>
 #include <string>
 
@@ -39,18 +40,36 @@ template <class Scalar>
 RowMajorRows sparse_rows_product(const YukawaNearField<Scalar>& y, const RowMajorRows& x) {
   const Eigen::Index k = x.cols(), n = y.rows();
   RowMajorRows out = RowMajorRows::Zero(n, k);
-  const std::int32_t* const column = y.column();
   const Scalar* const minus_k = y.minus_double_layer();
   const Scalar* const v = y.single_layer();
 #pragma omp parallel for schedule(static, 256)
   for (Eigen::Index i = 0; i < n; ++i) {
     double* const sums = out.data() + i * k;
-    for (Eigen::Index s = y.row_begin(i); s < y.row_end(i); ++s) {
-      const double a = double(minus_k[s]), b = double(v[s]);
-      const double* const phi = x.data() + Eigen::Index(column[s]) * k;
-      const double* const q = phi + n * k;
-      for (Eigen::Index c = 0; c < k; ++c) sums[c] += a * phi[c] + b * q[c];
-    }
+    Eigen::Index s = y.row_begin(i);
+    // A run's columns are consecutive: its rows of x are read as one contiguous stretch.
+    // Three vectors (the three directions, the solver's case) are summed in registers.
+    const auto add_row = [&](auto vectors) {
+      constexpr int kv = decltype(vectors)::value;
+      double acc[kv > 0 ? kv : 1] = {};
+      for (Eigen::Index r = y.run_begin(i); r < y.run_end(i); ++r) {
+        const double* phi = x.data() + y.run_column(r) * k;
+        for (Eigen::Index t = 0; t < y.run_length(r); ++t, ++s, phi += k) {
+          const double a = double(minus_k[s]), b = double(v[s]);
+          const double* const q = phi + n * k;
+          if constexpr (kv > 0) {
+            for (int c = 0; c < kv; ++c) acc[c] += a * phi[c] + b * q[c];
+          } else {
+            for (Eigen::Index c = 0; c < k; ++c) sums[c] += a * phi[c] + b * q[c];
+          }
+        }
+      }
+      if constexpr (kv > 0)
+        for (int c = 0; c < kv; ++c) sums[c] = acc[c];
+    };
+    if (k == 3)
+      add_row(std::integral_constant<int, 3>{});
+    else
+      add_row(std::integral_constant<int, 0>{});
   }
   return out;
 }
@@ -58,6 +77,7 @@ RowMajorRows sparse_rows_product(const YukawaNearField<Scalar>& y, const RowMajo
 }  // namespace
 
 std::uint64_t hmatrix_solver_memory_estimate(Eigen::Index faces, std::uint64_t exterior_pairs,
+                                             std::uint64_t exterior_runs,
                                              const HMatrixSolverOptions& options) {
   const double n = double(faces);
   // Near field: each leaf meets O(1) leaves densely (measured on a sphere: 30 at η = 1, 20
@@ -73,9 +93,9 @@ std::uint64_t hmatrix_solver_memory_estimate(Eigen::Index faces, std::uint64_t e
   const double factor_bytes = options.single_precision ? 2.5 : 8.0;
   const double laplace = n * (entry_bytes * 2.0 * near_leaves * leaf +
                               factor_bytes * levels * 6.0 * 3.0 * kTypicalRank);
-  // Yukawa: two values (single or double precision) and a 32-bit column per pair, written
-  // in place.
-  const double yukawa = (2.0 * entry_bytes + 4.0) * double(exterior_pairs) + 8.0 * n;
+  // Yukawa: two values (single or double precision) per pair and a 32-bit column and a
+  // 16-bit length per run, written in place.
+  const double yukawa = 2.0 * entry_bytes * double(exterior_pairs) + 6.0 * double(exterior_runs) + 16.0 * n;
   const double preconditioner =
       double(ClusterBlockPreconditioner::bytes_for(faces, options.preconditioner_block));
   // The coarse space: A_c and its LU for at most kMaxClusters clusters (A E's factors are
@@ -109,10 +129,11 @@ BoundarySolution solve_transmission_hmatrix(const geometry::SurfaceMesh& mesh,
   // the walls' thickness far more than the Laplace part does.
   const double negligible = options.aca_tolerance;
   const auto count_start = Clock::now();
-  const Eigen::VectorX<Eigen::Index> exterior_pairs =
-      yukawa_near_field_row_pairs(panels, tree, parameters.kappa, negligible);
+  const YukawaNearFieldRows exterior_rows =
+      yukawa_near_field_rows(panels, tree, parameters.kappa, negligible);
   const double count_seconds = seconds_since(count_start);
-  require_memory(hmatrix_solver_memory_estimate(n, std::uint64_t(exterior_pairs.sum()), options),
+  require_memory(hmatrix_solver_memory_estimate(n, std::uint64_t(exterior_rows.pairs.sum()),
+                                                std::uint64_t(exterior_rows.runs.sum()), options),
                  "the hierarchical-matrix BEM system of " + std::to_string(n) + " faces",
                  "use a coarser mesh (larger --max-edge)", options.max_memory_bytes);
 
@@ -135,10 +156,10 @@ BoundarySolution solve_transmission_hmatrix(const geometry::SurfaceMesh& mesh,
   const YukawaNearField<double> yukawa_double =
       options.single_precision ? YukawaNearField<double>()
                                : assemble_yukawa_near_field<double>(panels, tree, parameters.kappa,
-                                                                    negligible, progress, &exterior_pairs);
+                                                                    negligible, progress, &exterior_rows);
   const YukawaNearField<float> yukawa_single =
       options.single_precision ? assemble_yukawa_near_field<float>(panels, tree, parameters.kappa,
-                                                                   negligible, progress, &exterior_pairs)
+                                                                   negligible, progress, &exterior_rows)
                                : YukawaNearField<float>();
   const auto with_exterior = [&](const auto& use) {
     return options.single_precision ? use(yukawa_single) : use(yukawa_double);

@@ -66,10 +66,11 @@ struct HMatrixSolverOptions {
 };
 
 /// Bytes the fast path is expected to hold for `faces` faces (the guard's estimate: near
-/// field and low-rank factors at a typical rank, the exterior matrix of
-/// `exterior_pairs` panel pairs (yukawa_near_field_row_pairs counts them), preconditioner,
-/// Krylov bases).
+/// field and low-rank factors at a typical rank, the exterior matrix of `exterior_pairs`
+/// panel pairs in `exterior_runs` runs (yukawa_near_field_rows counts them),
+/// preconditioner, Krylov bases).
 std::uint64_t hmatrix_solver_memory_estimate(Eigen::Index faces, std::uint64_t exterior_pairs,
+                                             std::uint64_t exterior_runs,
                                              const HMatrixSolverOptions& options);
 
 /// Solves for s_1, s_2, s_3 on a closed, outward-oriented mesh. Throws ResourceError if the

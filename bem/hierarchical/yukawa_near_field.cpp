@@ -61,17 +61,27 @@ ResourceError ran_out_of_memory(Eigen::Index n) {
 
 }  // namespace
 
-Eigen::VectorX<Eigen::Index> yukawa_near_field_row_pairs(const std::vector<Panel>& panels,
-                                                         const ClusterTree& tree, double kappa,
-                                                         double negligible) {
+Eigen::Index yukawa_near_field_runs(const std::vector<Eigen::Index>& columns) {
+  Eigen::Index runs = 0, length = 0;
+  for (std::size_t t = 0; t < columns.size(); ++t) {
+    const bool continues = t > 0 && columns[t] == columns[t - 1] + 1 &&
+                           length < YukawaNearField<float>::kMaxRun;
+    length = continues ? length + 1 : 1;
+    runs += !continues;
+  }
+  return runs;
+}
+
+YukawaNearFieldRows yukawa_near_field_rows(const std::vector<Panel>& panels, const ClusterTree& tree,
+                                           double kappa, double negligible) {
   const auto& perm = tree.permutation();
   const Eigen::Index n = tree.root().size();
   const Cutoff cutoff(panels, kappa, negligible);
-  Eigen::VectorX<Eigen::Index> room(n);
+  YukawaNearFieldRows rows{Eigen::VectorX<Eigen::Index>(n), Eigen::VectorX<Eigen::Index>(n)};
   std::atomic<bool> out_of_memory{false};
 #pragma omp parallel
   {
-    std::vector<Eigen::Index> near;
+    std::vector<Eigen::Index> near, kept;
     std::vector<int> stack;
 #pragma omp for schedule(dynamic, 64)
     for (Eigen::Index i = 0; i < n; ++i) {
@@ -79,9 +89,11 @@ Eigen::VectorX<Eigen::Index> yukawa_near_field_row_pairs(const std::vector<Panel
       try {
         const Panel& test = panels[size_t(perm[size_t(i)])];
         candidate_panels(test, tree, cutoff.reach, near, stack);
-        Eigen::Index count = 0;
-        for (const Eigen::Index j : near) count += cutoff.kept(test, panels[size_t(perm[size_t(j)])]);
-        room(i) = count;
+        kept.clear();
+        for (const Eigen::Index j : near)
+          if (cutoff.kept(test, panels[size_t(perm[size_t(j)])])) kept.push_back(j);
+        rows.pairs(i) = Eigen::Index(kept.size());
+        rows.runs(i) = yukawa_near_field_runs(kept);
       } catch (const std::bad_alloc&) {
         out_of_memory = true;  // reported after the loop: an exception cannot leave it
       }
@@ -89,7 +101,7 @@ Eigen::VectorX<Eigen::Index> yukawa_near_field_row_pairs(const std::vector<Panel
   }
   throw_if_cancelled();
   if (out_of_memory) throw ran_out_of_memory(n);
-  return room;
+  return rows;
 }
 
 template <class Scalar>
@@ -97,27 +109,29 @@ YukawaNearField<Scalar> assemble_yukawa_near_field(const std::vector<Panel>& pan
                                                    const ClusterTree& tree, double kappa,
                                                    double negligible,
                                                    const ProgressCallback& progress,
-                                                   const Eigen::VectorX<Eigen::Index>* row_pairs) {
+                                                   const YukawaNearFieldRows* rows) {
   const auto& perm = tree.permutation();
   const Eigen::Index n = tree.root().size();
   const Cutoff cutoff(panels, kappa, negligible);
   // Two passes, so that the rows are written straight into the matrix and nothing else of
-  // its size is ever held: first each row's pairs (yukawa_near_field_row_pairs), then the
+  // its size is ever held: first each row's pairs and runs (yukawa_near_field_rows), then the
   // entries.
-  Eigen::VectorX<Eigen::Index> counted;
-  if (!row_pairs) counted = yukawa_near_field_row_pairs(panels, tree, kappa, negligible);
-  const Eigen::VectorX<Eigen::Index>& room = row_pairs ? *row_pairs : counted;
-  BEMSHAPE_ASSERT(room.size() == n, "exterior near field: one row size per panel");
+  YukawaNearFieldRows counted;
+  if (!rows) counted = yukawa_near_field_rows(panels, tree, kappa, negligible);
+  const YukawaNearFieldRows& room = rows ? *rows : counted;
+  BEMSHAPE_ASSERT(room.pairs.size() == n && room.runs.size() == n,
+                  "exterior near field: one row size per panel");
   std::atomic<bool> out_of_memory{false};
-  if (room.sum() > std::numeric_limits<std::int32_t>::max())
+  const Eigen::Index pairs = room.pairs.sum(), runs = room.runs.sum();
+  if (pairs > std::numeric_limits<std::int32_t>::max())
     throw ResourceError("the exterior near field of " + std::to_string(n) + " faces needs " +
-                        std::to_string(room.sum()) + " panel pairs, more than its 32-bit index allows (" +
+                        std::to_string(pairs) + " panel pairs, more than its 32-bit index allows (" +
                         std::to_string(std::numeric_limits<std::int32_t>::max()) +
                         "); use a coarser mesh (larger --max-edge)");
   // The exact size against the memory left now (the interior H-matrix is already held).
-  require_memory((4 + 2 * sizeof(Scalar)) * std::uint64_t(room.sum()) + 8 * std::uint64_t(n),
+  require_memory(2 * sizeof(Scalar) * std::uint64_t(pairs) + 6 * std::uint64_t(runs) + 16 * std::uint64_t(n),
                  "the exterior near field of " + std::to_string(n) + " faces (" +
-                     std::to_string(room.sum()) + " panel pairs)",
+                     std::to_string(pairs) + " panel pairs)",
                  "use a coarser mesh (larger --max-edge)");
   YukawaNearField<Scalar> y;
   try {
@@ -150,13 +164,11 @@ YukawaNearField<Scalar> assemble_yukawa_near_field(const std::vector<Panel>& pan
           kept.push_back(j);
           faces.push_back(perm[size_t(j)]);
         }
-        BEMSHAPE_ASSERT(Eigen::Index(kept.size()) == y.row_end(i) - y.row_begin(i),
-                        "exterior near field: the row holds the counted pairs");
+        y.set_columns(i, kept);
         entries.resize(kept.size());
         yukawa.fill_row(perm[size_t(i)], faces, entries);
         const Eigen::Index first = y.row_begin(i);
         for (size_t t = 0; t < kept.size(); ++t) {
-          y.column()[first + Eigen::Index(t)] = static_cast<std::int32_t>(kept[t]);
           y.minus_double_layer()[first + Eigen::Index(t)] = static_cast<Scalar>(-entries[t].double_layer);
           y.single_layer()[first + Eigen::Index(t)] = static_cast<Scalar>(entries[t].single_layer);
         }
@@ -177,9 +189,9 @@ YukawaNearField<Scalar> assemble_yukawa_near_field(const std::vector<Panel>& pan
 
 template YukawaNearField<double> assemble_yukawa_near_field<double>(
     const std::vector<Panel>&, const ClusterTree&, double, double, const ProgressCallback&,
-    const Eigen::VectorX<Eigen::Index>*);
+    const YukawaNearFieldRows*);
 template YukawaNearField<float> assemble_yukawa_near_field<float>(
     const std::vector<Panel>&, const ClusterTree&, double, double, const ProgressCallback&,
-    const Eigen::VectorX<Eigen::Index>*);
+    const YukawaNearFieldRows*);
 
 }  // namespace bemshape::bem

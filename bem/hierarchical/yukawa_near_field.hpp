@@ -10,7 +10,7 @@
 // Layout, in cluster-tree order (bem/hierarchical/cluster_tree.hpp): N × 2N,
 //   Y(i, j) = −Kκ[i, j],   Y(i, N + j) = Vκ[i, j],
 // i.e. the exterior identity's operator on (φ, q) without the ½M term, stored as pairs
-// (YukawaNearField).
+// whose columns are kept as runs of consecutive panels (YukawaNearField).
 
 #include <cstdint>
 #include <vector>
@@ -21,6 +21,7 @@
 #include "bem/galerkin_operators.hpp"
 #include "bem/hierarchical/cluster_tree.hpp"
 #include "bem/panel.hpp"
+#include "core/assert.hpp"
 #include "core/progress.hpp"
 
 namespace bemshape::bem {
@@ -29,13 +30,22 @@ namespace bemshape::bem {
 /// exterior operator).
 using SparseRowMatrix = Eigen::SparseMatrix<double, Eigen::RowMajor, std::int32_t>;
 
+/// The size of each row of Y, in tree order: its pairs, and the runs of consecutive
+/// columns they form (what YukawaNearField stores in place of one index per pair).
+struct YukawaNearFieldRows {
+  Eigen::VectorX<Eigen::Index> pairs, runs;
+};
+
 /// Y = [−Kκ | Vκ] in compressed rows with one column pattern for both operators: slot s of
-/// row i holds the panel j = column(s) and both entries of the pair, −Kκ[i, j] and Vκ[i, j]
-/// (one panel pair gives both). A pair costs one 32-bit index and two values: 12 bytes in
-/// single precision, 20 in double, instead of 16 and 24 as two separate sparse entries.
-/// Kκ vanishes between coplanar panels; its zeros are stored with their Vκ. The pairs are
-/// O(N) (about 650 per row at the default element size), so 2^31 − 1 of them is ample up to
-/// 10⁶ faces; assembly refuses a matrix with more.
+/// row i holds a panel j and both entries of the pair, −Kκ[i, j] and Vκ[i, j] (one panel
+/// pair gives both). The columns of a row are stored as runs of consecutive panels — a
+/// 32-bit first column and a 16-bit length — since the panels within the cutoff of a
+/// panel fill whole stretches of tree order: about 7–8 pairs per run on a sphere and a
+/// thin-walled box, so a pair costs its two values and under a byte of index, 9 bytes in
+/// single precision (12 with one 32-bit index per pair). Kκ vanishes between coplanar
+/// panels; its zeros are stored with their Vκ. The pairs are O(N) (about 650 per row at
+/// the default element size), so 2^31 − 1 of them is ample up to 10⁶ faces; assembly
+/// refuses a matrix with more.
 ///
 /// `Scalar`: double, or float for the H-matrix solver when its factors are in single
 /// precision (tolerance ≥ 1e−6): each entry is computed in double precision and rounded
@@ -43,13 +53,22 @@ using SparseRowMatrix = Eigen::SparseMatrix<double, Eigen::RowMajor, std::int32_
 template <class Scalar>
 class YukawaNearField {
  public:
+  /// Longest run: a longer stretch of consecutive columns is stored as several runs.
+  static constexpr Eigen::Index kMaxRun = 65535;
+
   YukawaNearField() = default;
-  /// Room for row_pairs(i) pairs in row i (all zero): the rows are then filled in place.
-  explicit YukawaNearField(const Eigen::VectorX<Eigen::Index>& row_pairs)
-      : n_(row_pairs.size()), row_start_(static_cast<std::size_t>(n_) + 1, 0) {
-    for (Eigen::Index i = 0; i < n_; ++i)
-      row_start_[std::size_t(i) + 1] = row_start_[std::size_t(i)] + row_pairs(i);
-    column_.assign(std::size_t(row_start_.back()), 0);
+  /// Room for rows.pairs(i) pairs in rows.runs(i) runs in row i (all zero): the rows are then
+  /// filled in place (set_columns and the value arrays).
+  explicit YukawaNearField(const YukawaNearFieldRows& rows)
+      : n_(rows.pairs.size()),
+        row_start_(static_cast<std::size_t>(n_) + 1, 0),
+        run_row_start_(static_cast<std::size_t>(n_) + 1, 0) {
+    for (Eigen::Index i = 0; i < n_; ++i) {
+      row_start_[std::size_t(i) + 1] = row_start_[std::size_t(i)] + rows.pairs(i);
+      run_row_start_[std::size_t(i) + 1] = run_row_start_[std::size_t(i)] + rows.runs(i);
+    }
+    run_column_.assign(std::size_t(run_row_start_.back()), 0);
+    run_length_.assign(std::size_t(run_row_start_.back()), 0);
     minus_double_layer_.assign(std::size_t(row_start_.back()), Scalar(0));
     single_layer_.assign(std::size_t(row_start_.back()), Scalar(0));
   }
@@ -57,22 +76,45 @@ class YukawaNearField {
   Eigen::Index rows() const { return n_; }
   Eigen::Index cols() const { return 2 * n_; }
   Eigen::Index pairs() const { return row_start_.empty() ? 0 : row_start_.back(); }
+  Eigen::Index runs() const { return run_row_start_.empty() ? 0 : run_row_start_.back(); }
+  /// Slots [row_begin(i), row_end(i)) of the values hold row i's pairs, in column order.
   Eigen::Index row_begin(Eigen::Index i) const { return row_start_[std::size_t(i)]; }
   Eigen::Index row_end(Eigen::Index i) const { return row_start_[std::size_t(i) + 1]; }
+  /// Runs [run_begin(i), run_end(i)) hold row i's columns: run r covers the columns
+  /// run_column(r) … run_column(r) + run_length(r) − 1, in consecutive slots.
+  Eigen::Index run_begin(Eigen::Index i) const { return run_row_start_[std::size_t(i)]; }
+  Eigen::Index run_end(Eigen::Index i) const { return run_row_start_[std::size_t(i) + 1]; }
+  Eigen::Index run_column(Eigen::Index r) const { return run_column_[std::size_t(r)]; }
+  Eigen::Index run_length(Eigen::Index r) const { return run_length_[std::size_t(r)]; }
 
-  std::int32_t* column() { return column_.data(); }
+  /// Stores the columns of row i (strictly increasing, as many as counted) as runs.
+  void set_columns(Eigen::Index i, const std::vector<Eigen::Index>& columns) {
+    BEMSHAPE_ASSERT(Eigen::Index(columns.size()) == row_end(i) - row_begin(i),
+                    "exterior near field: the row holds the counted pairs");
+    Eigen::Index r = run_begin(i);
+    for (std::size_t t = 0; t < columns.size(); ++r) {
+      std::size_t u = t + 1;
+      while (u < columns.size() && columns[u] == columns[u - 1] + 1 && Eigen::Index(u - t) < kMaxRun) ++u;
+      BEMSHAPE_ASSERT(r < run_end(i), "exterior near field: the row holds the counted runs");
+      run_column_[std::size_t(r)] = static_cast<std::int32_t>(columns[t]);
+      run_length_[std::size_t(r)] = static_cast<std::uint16_t>(u - t);
+      t = u;
+    }
+    BEMSHAPE_ASSERT(r == run_end(i), "exterior near field: the row holds the counted runs");
+  }
+
   Scalar* minus_double_layer() { return minus_double_layer_.data(); }
   Scalar* single_layer() { return single_layer_.data(); }
-  const std::int32_t* column() const { return column_.data(); }
   const Scalar* minus_double_layer() const { return minus_double_layer_.data(); }
   const Scalar* single_layer() const { return single_layer_.data(); }
 
   /// f(j, −Kκ[i, j], Vκ[i, j]) for the pairs of row i, j increasing.
   template <class F>
   void for_each_in_row(Eigen::Index i, F&& f) const {
-    for (Eigen::Index s = row_begin(i); s < row_end(i); ++s)
-      f(Eigen::Index(column_[std::size_t(s)]), double(minus_double_layer_[std::size_t(s)]),
-        double(single_layer_[std::size_t(s)]));
+    Eigen::Index s = row_begin(i);
+    for (Eigen::Index r = run_begin(i); r < run_end(i); ++r)
+      for (Eigen::Index j = run_column(r); j < run_column(r) + run_length(r); ++j, ++s)
+        f(j, double(minus_double_layer_[std::size_t(s)]), double(single_layer_[std::size_t(s)]));
   }
 
   /// The n × 2n matrix [−Kκ | Vκ] (tests, small meshes).
@@ -86,31 +128,36 @@ class YukawaNearField {
     return y;
   }
 
-  /// Bytes held: per pair an index and two values, and the row offsets.
+  /// Bytes held: per pair two values, per run a 32-bit column and a 16-bit length, and the
+  /// row offsets.
   std::uint64_t bytes() const {
-    return (4ull + 2ull * sizeof(Scalar)) * std::uint64_t(pairs()) +
-           8ull * std::uint64_t(row_start_.size());
+    return 2ull * sizeof(Scalar) * std::uint64_t(pairs()) + 6ull * std::uint64_t(runs()) +
+           8ull * std::uint64_t(row_start_.size() + run_row_start_.size());
   }
 
  private:
   Eigen::Index n_ = 0;
-  std::vector<Eigen::Index> row_start_;
-  std::vector<std::int32_t> column_;
+  std::vector<Eigen::Index> row_start_, run_row_start_;
+  std::vector<std::int32_t> run_column_;
+  std::vector<std::uint16_t> run_length_;
   std::vector<Scalar> minus_double_layer_, single_layer_;
 };
+
+/// The runs of consecutive columns in strictly increasing `columns`, as set_columns stores
+/// them (runs no longer than YukawaNearField's kMaxRun).
+Eigen::Index yukawa_near_field_runs(const std::vector<Eigen::Index>& columns);
 
 /// The gap beyond which Yukawa entries attenuated below `negligible` are dropped,
 /// g* = −ln(negligible)/κ [model units].
 double yukawa_cutoff_gap(double kappa, double negligible);
 
-/// The number of pairs each row of Y will hold, in tree order: one per panel within the
-/// cutoff. The candidate search only, no integrals: what the memory guard needs before
-/// anything is assembled. About 650 per row at the default element size κ·h = 3 on a
+/// The number of pairs each row of Y will hold, in tree order (one per panel within the
+/// cutoff), and the runs they form. The candidate search only, no integrals: what the
+/// memory guard needs before anything is assembled. About 650 per row at the default element size κ·h = 3 on a
 /// curved surface; it grows as (κ·h)^−2 on finer meshes and doubles on walls thinner than
 /// the cutoff.
-Eigen::VectorX<Eigen::Index> yukawa_near_field_row_pairs(const std::vector<Panel>& panels,
-                                                         const ClusterTree& tree, double kappa,
-                                                         double negligible);
+YukawaNearFieldRows yukawa_near_field_rows(const std::vector<Panel>& panels, const ClusterTree& tree,
+                                           double kappa, double negligible);
 
 /// Assembles Y for the panels in tree order (parallel over rows; each row is computed the
 /// same way whatever the thread count). Pairs of panels whose gap |c_j − c_k| − r_j − r_k
@@ -119,11 +166,11 @@ Eigen::VectorX<Eigen::Index> yukawa_near_field_row_pairs(const std::vector<Panel
 /// tolerance for fewer pairs. If the counted pairs do not fit in the memory the machine has
 /// left (core/memory.hpp), ResourceError before any is stored. The rows are written in place
 /// into storage of the counted size, so nothing else of the matrix's size is ever held.
-/// `row_pairs`: yukawa_near_field_row_pairs of the same arguments, if already counted.
+/// `rows`: yukawa_near_field_rows of the same arguments, if already counted.
 template <class Scalar = double>
 YukawaNearField<Scalar> assemble_yukawa_near_field(
     const std::vector<Panel>& panels, const ClusterTree& tree, double kappa,
     double negligible = YukawaAttenuation::negligible, const ProgressCallback& progress = {},
-    const Eigen::VectorX<Eigen::Index>* row_pairs = nullptr);
+    const YukawaNearFieldRows* rows = nullptr);
 
 }  // namespace bemshape::bem

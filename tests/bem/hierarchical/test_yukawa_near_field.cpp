@@ -42,8 +42,8 @@ TEST_CASE("Yukawa near field: every nonzero entry of the dense operator, nothing
     }
   CHECK(mismatched == 0);
   // One pair per panel with a nonzero single layer (Kκ's coplanar zeros are stored with
-  // their Vκ), each row's columns strictly increasing, 20 bytes per pair in double
-  // precision.
+  // their Vκ), each row's columns strictly increasing; 16 bytes per pair in double
+  // precision and 6 per run of consecutive columns.
   CHECK(y.pairs() == nonzero);
   Eigen::Index unsorted = 0, zero_single = 0;
   for (Eigen::Index i = 0; i < n; ++i) {
@@ -56,32 +56,71 @@ TEST_CASE("Yukawa near field: every nonzero entry of the dense operator, nothing
   }
   CHECK(unsorted == 0);
   CHECK(zero_single == 0);
-  CHECK(y.bytes() == 20 * std::uint64_t(y.pairs()) + 8 * std::uint64_t(n + 1));
+  CHECK(y.bytes() == 16 * std::uint64_t(y.pairs()) + 6 * std::uint64_t(y.runs()) + 16 * std::uint64_t(n + 1));
+  // The runs are maximal: consecutive runs of a row never join up, and there are several
+  // pairs per run (whole stretches of tree order lie within the cutoff).
+  Eigen::Index joinable = 0;
+  for (Eigen::Index i = 0; i < n; ++i)
+    for (Eigen::Index r = y.run_begin(i) + 1; r < y.run_end(i); ++r)
+      joinable += y.run_column(r) == y.run_column(r - 1) + y.run_length(r - 1);
+  CHECK(joinable == 0);
+  CHECK(y.pairs() > 4 * y.runs());
   CHECK(nonzero < n * n);  // the cutoff drops something on this plate
 
   // The row sizes the memory guard counts before assembly: one pair per panel with a
-  // nonzero single-layer entry (every panel within the cutoff has one).
-  const Eigen::VectorX<Eigen::Index> pairs =
-      bem::yukawa_near_field_row_pairs(panels, tree, kappa, bem::YukawaAttenuation::negligible);
-  REQUIRE(pairs.size() == n);
+  // nonzero single-layer entry (every panel within the cutoff has one), and their runs.
+  const bem::YukawaNearFieldRows rows =
+      bem::yukawa_near_field_rows(panels, tree, kappa, bem::YukawaAttenuation::negligible);
+  REQUIRE(rows.pairs.size() == n);
+  REQUIRE(rows.runs.size() == n);
   Eigen::Index wrong = 0;
   for (Eigen::Index i = 0; i < n; ++i) {
-    Eigen::Index single = 0;
-    for (Eigen::Index j = 0; j < n; ++j) single += sparse(i, n + j) != 0.0;
-    wrong += pairs(i) != single;
-    wrong += pairs(i) != y.row_end(i) - y.row_begin(i);
+    Eigen::Index single = 0, runs = 0;
+    for (Eigen::Index j = 0; j < n; ++j) {
+      single += sparse(i, n + j) != 0.0;
+      runs += sparse(i, n + j) != 0.0 && (j == 0 || sparse(i, n + j - 1) == 0.0);
+    }
+    wrong += rows.pairs(i) != single;
+    wrong += rows.pairs(i) != y.row_end(i) - y.row_begin(i);
+    wrong += rows.runs(i) != runs;
+    wrong += rows.runs(i) != y.run_end(i) - y.run_begin(i);
   }
   CHECK(wrong == 0);
 
-  // The single-precision matrix of the H-matrix solver: the same pairs, each value the
-  // double one rounded once to float, 12 bytes per pair.
+  // The single-precision matrix of the H-matrix solver: the same pairs in the same runs,
+  // each value the double one rounded once to float, 8 bytes per pair.
   const bem::YukawaNearField<float> y_single = bem::assemble_yukawa_near_field<float>(panels, tree, kappa);
   REQUIRE(y_single.pairs() == y.pairs());
-  CHECK(y_single.bytes() == 12 * std::uint64_t(y.pairs()) + 8 * std::uint64_t(n + 1));
+  REQUIRE(y_single.runs() == y.runs());
+  CHECK(y_single.bytes() == 8 * std::uint64_t(y.pairs()) + 6 * std::uint64_t(y.runs()) + 16 * std::uint64_t(n + 1));
   Eigen::Index rounded_differently = 0;
+  for (Eigen::Index r = 0; r < y.runs(); ++r)
+    rounded_differently += y.run_column(r) != y_single.run_column(r) || y.run_length(r) != y_single.run_length(r);
   for (Eigen::Index s = 0; s < y.pairs(); ++s)
-    rounded_differently += y.column()[s] != y_single.column()[s] ||
-                           static_cast<float>(y.minus_double_layer()[s]) != y_single.minus_double_layer()[s] ||
+    rounded_differently += static_cast<float>(y.minus_double_layer()[s]) != y_single.minus_double_layer()[s] ||
                            static_cast<float>(y.single_layer()[s]) != y_single.single_layer()[s];
   CHECK(rounded_differently == 0);
+}
+
+TEST_CASE("Yukawa near field: runs of consecutive columns, split at the longest run") {
+  std::vector<Eigen::Index> columns;
+  CHECK(bem::yukawa_near_field_runs(columns) == 0);
+  columns = {3, 4, 5, 9, 11, 12};
+  CHECK(bem::yukawa_near_field_runs(columns) == 3);
+  // A stretch longer than kMaxRun is stored as several runs.
+  const Eigen::Index longest = bem::YukawaNearField<float>::kMaxRun;
+  columns.clear();
+  for (Eigen::Index j = 0; j < 2 * longest + 5; ++j) columns.push_back(j);
+  CHECK(bem::yukawa_near_field_runs(columns) == 3);
+  bem::YukawaNearFieldRows rows{Eigen::VectorX<Eigen::Index>::Constant(1, Eigen::Index(columns.size())),
+                                Eigen::VectorX<Eigen::Index>::Constant(1, 3)};
+  bem::YukawaNearField<float> y(rows);
+  y.set_columns(0, columns);
+  CHECK(y.run_length(0) == longest);
+  CHECK(y.run_column(1) == longest);
+  CHECK(y.run_length(2) == 5);
+  Eigen::Index expected = 0, wrong = 0;
+  y.for_each_in_row(0, [&](Eigen::Index j, double, double) { wrong += j != expected++; });
+  CHECK(wrong == 0);
+  CHECK(expected == Eigen::Index(columns.size()));
 }
