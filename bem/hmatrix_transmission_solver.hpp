@@ -39,10 +39,13 @@ struct HMatrixSolverOptions {
   /// η of the admissibility condition.
   double eta = kDefaultAdmissibility;
   /// The interior H-matrix in single precision, low-rank factors and dense near-field blocks
-  /// (HierarchicalMatrixOptions): half its memory. Rounding the factors perturbs a product
-  /// by about 4e−7 relative, the near field by less (measured, tests/bem/hierarchical),
-  /// which leaves the solution unchanged at the default tolerance of 1e−6 (docs/benchmarks.md)
-  /// but would dominate a tighter one: turn it off below 1e−6 (apps/boundary_solve does).
+  /// (HierarchicalMatrixOptions), the factors' columns of small singular value in 16- or
+  /// 8-bit fixed point within the same rounding bound (AdaptivePrecisionFactors), and the
+  /// exterior values in single precision: under half the memory. Rounding the factors
+  /// perturbs a product by about 4e−7 relative, the near field by less (measured,
+  /// tests/bem/hierarchical), which leaves the solution unchanged at the default tolerance
+  /// of 1e−6 (docs/benchmarks.md) but would dominate a tighter one: turn it off below 1e−6
+  /// (apps/boundary_solve does).
   bool single_precision = true;
   /// Panels per leaf of the cluster tree.
   Eigen::Index leaf_size = ClusterTree::kDefaultLeafSize;
