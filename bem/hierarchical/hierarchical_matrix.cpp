@@ -64,9 +64,16 @@ HierarchicalMatrix::HierarchicalMatrix(const ClusterTree& row_tree, const Cluste
       const Eigen::Index m = b.row_end - b.row_begin, n = b.col_end - b.col_begin;
       bool stored = false;
       if (b.is_low_rank) {
-        // ACA on the o·m × g·n block; a rank at which U and V hold as many entries as the block
-        // itself gains nothing, so the block is then computed densely.
-        const Eigen::Index max_rank = std::max<Eigen::Index>(1, (o * m * g * n) / (o * m + g * n));
+        // ACA on the o·m × g·n block; a rank at which U and V hold as many bytes as the block
+        // itself gains nothing, so the block is then computed densely. With fixed-point columns
+        // a factor entry takes about 2.3 bytes against a near-field entry's 4 (measured on
+        // spheres and boxes, docs/benchmarks.md), so ACA may go to 1.5 times the rank of equal
+        // entry counts; the stored bytes decide below.
+        const Eigen::Index equal_entries = std::max<Eigen::Index>(1, (o * m * g * n) / (o * m + g * n));
+        const bool narrow = options.single_precision_factors && options.fixed_point_columns &&
+                            options.single_precision_near_field;
+        const Eigen::Index max_rank =
+            narrow ? std::min(std::min(o * m, g * n), (3 * equal_entries) / 2) : equal_entries;
         Eigen::MatrixXd column_block(o * m, g);
         Eigen::MatrixXd row_block(o, g * n);
         auto aca = adaptive_cross_approximation(
@@ -87,12 +94,18 @@ HierarchicalMatrix::HierarchicalMatrix(const ClusterTree& row_tree, const Cluste
           if (options.single_precision_factors) {
             b.factors = AdaptivePrecisionFactors(aca->U, aca->V, options.fixed_point_columns);
             b.single_precision = true;
+            const std::uint64_t dense_bytes =
+                (options.single_precision_near_field ? 4u : 8u) * std::uint64_t(o * m * g * n);
+            stored = b.factors.bytes() < dense_bytes;
+            if (!stored) b.factors = AdaptivePrecisionFactors();
           } else {
             b.low_rank = std::move(*aca);
+            stored = true;
           }
-          stored = true;
-        } else {
+        }
+        if (!stored) {
           b.is_low_rank = false;
+          b.single_precision = false;
         }
       }
       if (!stored) {
