@@ -89,11 +89,7 @@ Problem box(double faces) {
   Problem p;
   const double edge = 1.5 * kA * p.h0;
   const double side = std::max(6.0 * p.h0, edge * std::sqrt(faces / 24.0));
-  const Eigen::Vector3d half = Eigen::Vector3d::Constant(side / 2);
-  const Eigen::Vector3d inner = half - Eigen::Vector3d::Constant(p.h0);
-  p.mesh = geometry::concatenated(
-      geometry::make_box(-half, half, edge),
-      geometry::with_flipped_orientation(geometry::make_box(-inner, inner, edge)));
+  p.mesh = geometry::make_hollow_box(Eigen::Vector3d::Constant(side / 2), p.h0, edge);
   p.thickness = p.h0;
   const Eigen::MatrixX3d& c = p.mesh.face_centroids();
   for (Eigen::Index f = 0; f < c.rows(); ++f)  // middle of the top wall, both sides

@@ -119,6 +119,14 @@ SurfaceMesh make_spherical_shell(double inner_radius, double outer_radius, int i
       with_flipped_orientation(make_geodesic_sphere(inner_radius, inner_frequency)));
 }
 
+SurfaceMesh make_hollow_box(const Eigen::Vector3d& half, double wall, double max_edge) {
+  if (!(wall > 0.0 && wall < half.minCoeff()))
+    throw InputError("hollow box: the wall thickness must be positive and less than the smallest half extent");
+  const Eigen::Vector3d inner = half - Eigen::Vector3d::Constant(wall);
+  return concatenated(make_box(-half, half, max_edge),
+                      with_flipped_orientation(make_box(-inner, inner, max_edge)));
+}
+
 SurfaceMesh make_box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, double max_edge) {
   require_positive(max_edge, "maximum edge length");
   const Eigen::Vector3d extent = hi - lo;

@@ -27,6 +27,11 @@ SurfaceMesh make_spherical_shell(double inner_radius, double outer_radius, int i
 /// longer than `max_edge` along the axes.
 SurfaceMesh make_box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, double max_edge);
 
+/// Thin-walled box [−half, half] around the cavity [−(half − wall), half − wall] (every wall
+/// `wall` thick): the outer box oriented outward and the inner one into the cavity, both as
+/// make_box. InputError unless 0 < wall < the smallest half extent.
+SurfaceMesh make_hollow_box(const Eigen::Vector3d& half, double wall, double max_edge);
+
 /// Closed circular cylinder (rod) of the given radius along the z axis, z ∈ [−length/2,
 /// length/2], with flat caps; edges about `max_edge` long.
 SurfaceMesh make_cylinder(double radius, double length, double max_edge);

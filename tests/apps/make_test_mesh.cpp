@@ -29,10 +29,7 @@ int main(int argc, char** argv) {
     mesh = geometry::make_box(-half, half, arg(5));
     out = argv[6];
   } else if (kind == "hollow-box" && argc == 6 && arg(3) > 0 && 2 * arg(3) < arg(2)) {
-    const Eigen::Vector3d half = Eigen::Vector3d::Constant(arg(2) / 2);
-    const Eigen::Vector3d inner = half - Eigen::Vector3d::Constant(arg(3));
-    mesh = geometry::concatenated(geometry::make_box(-half, half, arg(4)),
-                                  geometry::with_flipped_orientation(geometry::make_box(-inner, inner, arg(4))));
+    mesh = geometry::make_hollow_box(Eigen::Vector3d::Constant(arg(2) / 2), arg(3), arg(4));
     out = argv[5];
   } else if (kind == "shell" && argc == 6) {
     mesh = geometry::make_spherical_shell(arg(2), arg(3),

@@ -3,6 +3,7 @@
 #include <map>
 #include <numbers>
 
+#include "core/errors.hpp"
 #include "geometry/primitive_meshes.hpp"
 
 using namespace bemshape::geometry;
@@ -73,4 +74,20 @@ TEST_CASE("spherical shell: inner sphere faces the cavity, volume is the differe
   const Eigen::Index half = shell.num_faces() / 2;
   for (Eigen::Index f = half; f < shell.num_faces(); ++f)
     CHECK(shell.face_normals().row(f).dot(shell.face_centroids().row(f)) < 0.0);
+}
+
+TEST_CASE("hollow box: the cavity faces inward, volume and area are exact, bad walls refused") {
+  const Eigen::Vector3d half(0.6, 0.5, 0.45);
+  const auto box = make_hollow_box(half, 0.3, 0.1);
+  CHECK(closed_and_consistent(box));
+  const Eigen::Vector3d inner = half - Eigen::Vector3d::Constant(0.3);
+  CHECK(box.signed_volume() == Approx(8.0 * (half.prod() - inner.prod())).epsilon(1e-12));
+  const auto area = [](const Eigen::Vector3d& h) { return 8.0 * (h.x() * h.y() + h.y() * h.z() + h.z() * h.x()); };
+  CHECK(box.area() == Approx(area(half) + area(inner)).epsilon(1e-12));
+  // The outer box comes first; the cavity's faces (the rest) have normals towards the centre.
+  const Eigen::Index outer = make_box(-half, half, 0.1).num_faces();
+  for (Eigen::Index f = outer; f < box.num_faces(); ++f)
+    CHECK(box.face_normals().row(f).dot(box.face_centroids().row(f)) < 0.0);
+  CHECK_THROWS_AS(make_hollow_box(half, 0.0, 0.1), bemshape::InputError);
+  CHECK_THROWS_AS(make_hollow_box(half, 0.45, 0.1), bemshape::InputError);
 }

@@ -28,10 +28,7 @@ struct System {
   Eigen::VectorXd half_mass;
 
   explicit System(bool single)
-      : mesh(geometry::concatenated(
-            geometry::make_box(-Eigen::Vector3d(0.6, 0.5, 0.45), Eigen::Vector3d(0.6, 0.5, 0.45), 0.1),
-            geometry::with_flipped_orientation(geometry::make_box(
-                -Eigen::Vector3d(0.3, 0.2, 0.15), Eigen::Vector3d(0.3, 0.2, 0.15), 0.1)))),
+      : mesh(geometry::make_hollow_box(Eigen::Vector3d(0.6, 0.5, 0.45), 0.3, 0.1)),
         panels(bem::make_panels(mesh)),
         tree(panels, 16),
         laplace(tree, bem::GalerkinBlockGenerator<bem::LaplaceKernel>(bem::LaplaceKernel{}, panels, tree),

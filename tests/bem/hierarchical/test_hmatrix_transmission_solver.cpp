@@ -60,10 +60,7 @@ TEST_CASE("H-matrix solver = dense solver on the ball and the closed form at its
 }
 
 TEST_CASE("H-matrix solver on a hollow box (flat walls, sharp edges, a cavity) = dense") {
-  const Eigen::Vector3d half(0.6, 0.5, 0.45), inner = half - Eigen::Vector3d::Constant(0.3);
-  const auto mesh = geometry::concatenated(
-      geometry::make_box(-half, half, 0.15),
-      geometry::with_flipped_orientation(geometry::make_box(-inner, inner, 0.15)));
+  const auto mesh = geometry::make_hollow_box(Eigen::Vector3d(0.6, 0.5, 0.45), 0.3, 0.15);
   const auto dense = bem::solve_transmission_dense(mesh, kParameters);
   bem::HMatrixSolverOptions options;
   options.tolerance = 1e-9;

@@ -33,11 +33,7 @@ Densities linear_field(const geometry::SurfaceMesh& mesh) {
 
 /// Hollow cube: outer side 1, wall 0.15, edges ≤ 1/12 (2,700 faces).
 geometry::SurfaceMesh hollow_box() {
-  const Eigen::Vector3d half = Eigen::Vector3d::Constant(0.5),
-                        inner = Eigen::Vector3d::Constant(0.35);
-  return geometry::concatenated(
-      geometry::make_box(-half, half, 1.0 / 12),
-      geometry::with_flipped_orientation(geometry::make_box(-inner, inner, 1.0 / 12)));
+  return geometry::make_hollow_box(Eigen::Vector3d::Constant(0.5), 0.15, 1.0 / 12);
 }
 
 /// `n` uniform points in the cube [−0.6, 0.6]³ (inside and outside both solids) and, for
