@@ -93,9 +93,11 @@ std::uint64_t hmatrix_solver_memory_estimate(Eigen::Index faces, std::uint64_t e
   const double factor_bytes = options.single_precision ? 2.5 : 8.0;
   const double laplace = n * (entry_bytes * 2.0 * near_leaves * leaf +
                               factor_bytes * levels * 6.0 * 3.0 * kTypicalRank);
-  // Yukawa: two values (single or double precision) per pair and a 32-bit column and a
-  // 16-bit length per run, written in place.
-  const double yukawa = 2.0 * entry_bytes * double(exterior_pairs) + 6.0 * double(exterior_runs) + 16.0 * n;
+  // Yukawa: written in place, its values in the factors' precision.
+  const double yukawa =
+      double(options.single_precision
+                 ? YukawaNearField<float>::bytes_for(exterior_pairs, exterior_runs, faces)
+                 : YukawaNearField<double>::bytes_for(exterior_pairs, exterior_runs, faces));
   const double preconditioner =
       double(ClusterBlockPreconditioner::bytes_for(faces, options.preconditioner_block));
   // The coarse space: A_c and its LU for at most kMaxClusters clusters (A E's factors are

@@ -22,19 +22,6 @@ double yukawa_cutoff_gap(double kappa, double negligible) { return -std::log(neg
 
 namespace {
 
-/// Tree positions of the panels whose boxes come within `reach` of the test panel's box, in
-/// increasing order (the candidates of one row).
-void candidate_panels(const Panel& test, const ClusterTree& tree, double reach,
-                      std::vector<Eigen::Index>& near, std::vector<int>& stack) {
-  BoundingBox box;
-  for (const auto& c : test.corners) box.extend(c);
-  near.clear();
-  tree.for_each_leaf_near(box, reach, stack, [&near](const Cluster& leaf) {
-    for (Eigen::Index j = leaf.begin; j < leaf.end; ++j) near.push_back(j);
-  });
-  std::sort(near.begin(), near.end());
-}
-
 /// What decides which entries of a row are kept: the cutoff gap g* and the reach of the
 /// candidate search around a panel's box.
 struct Cutoff {
@@ -53,6 +40,25 @@ struct Cutoff {
   }
 };
 
+/// The columns of one row: tree positions, in increasing order, of the panels the cutoff
+/// keeps for `test` among those whose boxes come within the reach of its box. `near` and
+/// `stack` are scratch space.
+void row_columns(const Panel& test, const std::vector<Panel>& panels, const ClusterTree& tree,
+                 const Cutoff& cutoff, std::vector<Eigen::Index>& near, std::vector<int>& stack,
+                 std::vector<Eigen::Index>& columns) {
+  BoundingBox box;
+  for (const auto& c : test.corners) box.extend(c);
+  near.clear();
+  tree.for_each_leaf_near(box, cutoff.reach, stack, [&near](const Cluster& leaf) {
+    for (Eigen::Index j = leaf.begin; j < leaf.end; ++j) near.push_back(j);
+  });
+  std::sort(near.begin(), near.end());
+  const auto& perm = tree.permutation();
+  columns.clear();
+  for (const Eigen::Index j : near)
+    if (cutoff.kept(test, panels[size_t(perm[size_t(j)])])) columns.push_back(j);
+}
+
 ResourceError ran_out_of_memory(Eigen::Index n) {
   return ResourceError("the exterior near field of " + std::to_string(n) +
                        " faces ran out of memory while assembling; use a coarser mesh "
@@ -62,13 +68,8 @@ ResourceError ran_out_of_memory(Eigen::Index n) {
 }  // namespace
 
 Eigen::Index yukawa_near_field_runs(const std::vector<Eigen::Index>& columns) {
-  Eigen::Index runs = 0, length = 0;
-  for (std::size_t t = 0; t < columns.size(); ++t) {
-    const bool continues = t > 0 && columns[t] == columns[t - 1] + 1 &&
-                           length < YukawaNearField<float>::kMaxRun;
-    length = continues ? length + 1 : 1;
-    runs += !continues;
-  }
+  Eigen::Index runs = 0;
+  YukawaNearField<float>::for_each_run(columns, [&runs](Eigen::Index, Eigen::Index) { ++runs; });
   return runs;
 }
 
@@ -88,10 +89,7 @@ YukawaNearFieldRows yukawa_near_field_rows(const std::vector<Panel>& panels, con
       if (cancellation_requested() || out_of_memory) continue;
       try {
         const Panel& test = panels[size_t(perm[size_t(i)])];
-        candidate_panels(test, tree, cutoff.reach, near, stack);
-        kept.clear();
-        for (const Eigen::Index j : near)
-          if (cutoff.kept(test, panels[size_t(perm[size_t(j)])])) kept.push_back(j);
+        row_columns(test, panels, tree, cutoff, near, stack, kept);
         rows.pairs(i) = Eigen::Index(kept.size());
         rows.runs(i) = yukawa_near_field_runs(kept);
       } catch (const std::bad_alloc&) {
@@ -129,7 +127,7 @@ YukawaNearField<Scalar> assemble_yukawa_near_field(const std::vector<Panel>& pan
                         std::to_string(std::numeric_limits<std::int32_t>::max()) +
                         "); use a coarser mesh (larger --max-edge)");
   // The exact size against the memory left now (the interior H-matrix is already held).
-  require_memory(2 * sizeof(Scalar) * std::uint64_t(pairs) + 6 * std::uint64_t(runs) + 16 * std::uint64_t(n),
+  require_memory(YukawaNearField<Scalar>::bytes_for(std::uint64_t(pairs), std::uint64_t(runs), n),
                  "the exterior near field of " + std::to_string(n) + " faces (" +
                      std::to_string(pairs) + " panel pairs)",
                  "use a coarser mesh (larger --max-edge)");
@@ -156,14 +154,9 @@ YukawaNearField<Scalar> assemble_yukawa_near_field(const std::vector<Panel>& pan
       if (cancellation_requested() || out_of_memory) continue;
       try {
         const Panel& test = panels[size_t(perm[size_t(i)])];
-        candidate_panels(test, tree, cutoff.reach, near, stack);
-        kept.clear();
-        faces.clear();
-        for (const Eigen::Index j : near) {
-          if (!cutoff.kept(test, panels[size_t(perm[size_t(j)])])) continue;
-          kept.push_back(j);
-          faces.push_back(perm[size_t(j)]);
-        }
+        row_columns(test, panels, tree, cutoff, near, stack, kept);
+        faces.resize(kept.size());
+        for (size_t t = 0; t < kept.size(); ++t) faces[t] = perm[size_t(kept[t])];
         y.set_columns(i, kept);
         entries.resize(kept.size());
         yukawa.fill_row(perm[size_t(i)], faces, entries);

@@ -87,19 +87,29 @@ class YukawaNearField {
   Eigen::Index run_column(Eigen::Index r) const { return run_column_[std::size_t(r)]; }
   Eigen::Index run_length(Eigen::Index r) const { return run_length_[std::size_t(r)]; }
 
+  /// f(first column, length) for each run of strictly increasing `columns`: the maximal
+  /// stretches of consecutive columns, split where one would exceed kMaxRun.
+  template <class F>
+  static void for_each_run(const std::vector<Eigen::Index>& columns, F&& f) {
+    for (std::size_t t = 0; t < columns.size();) {
+      std::size_t u = t + 1;
+      while (u < columns.size() && columns[u] == columns[u - 1] + 1 && Eigen::Index(u - t) < kMaxRun) ++u;
+      f(columns[t], Eigen::Index(u - t));
+      t = u;
+    }
+  }
+
   /// Stores the columns of row i (strictly increasing, as many as counted) as runs.
   void set_columns(Eigen::Index i, const std::vector<Eigen::Index>& columns) {
     BEMSHAPE_ASSERT(Eigen::Index(columns.size()) == row_end(i) - row_begin(i),
                     "exterior near field: the row holds the counted pairs");
     Eigen::Index r = run_begin(i);
-    for (std::size_t t = 0; t < columns.size(); ++r) {
-      std::size_t u = t + 1;
-      while (u < columns.size() && columns[u] == columns[u - 1] + 1 && Eigen::Index(u - t) < kMaxRun) ++u;
+    for_each_run(columns, [&](Eigen::Index first, Eigen::Index length) {
       BEMSHAPE_ASSERT(r < run_end(i), "exterior near field: the row holds the counted runs");
-      run_column_[std::size_t(r)] = static_cast<std::int32_t>(columns[t]);
-      run_length_[std::size_t(r)] = static_cast<std::uint16_t>(u - t);
-      t = u;
-    }
+      run_column_[std::size_t(r)] = static_cast<std::int32_t>(first);
+      run_length_[std::size_t(r)] = static_cast<std::uint16_t>(length);
+      ++r;
+    });
     BEMSHAPE_ASSERT(r == run_end(i), "exterior near field: the row holds the counted runs");
   }
 
@@ -128,12 +138,13 @@ class YukawaNearField {
     return y;
   }
 
-  /// Bytes held: per pair two values, per run a 32-bit column and a 16-bit length, and the
-  /// row offsets.
-  std::uint64_t bytes() const {
-    return 2ull * sizeof(Scalar) * std::uint64_t(pairs()) + 6ull * std::uint64_t(runs()) +
-           8ull * std::uint64_t(row_start_.size() + run_row_start_.size());
+  /// Bytes of a matrix of `pairs` pairs in `runs` runs over `rows` rows: per pair two values,
+  /// per run a 32-bit column and a 16-bit length, and the two row offset arrays.
+  static std::uint64_t bytes_for(std::uint64_t pairs, std::uint64_t runs, Eigen::Index rows) {
+    return 2ull * sizeof(Scalar) * pairs + 6ull * runs + 16ull * std::uint64_t(rows + 1);
   }
+  /// Bytes held.
+  std::uint64_t bytes() const { return bytes_for(std::uint64_t(pairs()), std::uint64_t(runs()), n_); }
 
  private:
   Eigen::Index n_ = 0;
