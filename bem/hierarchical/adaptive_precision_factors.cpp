@@ -34,6 +34,29 @@ double to_fixed_point(const Eigen::Ref<const Eigen::VectorXd>& x, Int* q, double
   return std::sqrt(error2);
 }
 
+/// Columns [first, first + q.cols()) of x in fixed point: q and one scale per column.
+template <class Int>
+void store_fixed_point(const Eigen::MatrixXd& x, Eigen::Index first,
+                       Eigen::Matrix<Int, Eigen::Dynamic, Eigen::Dynamic>& q, Eigen::VectorXd& scale) {
+  scale.resize(q.cols());
+  for (Eigen::Index c = 0; c < q.cols(); ++c) to_fixed_point<Int>(x.col(first + c), q.col(c).data(), scale(c));
+}
+
+/// out.col(first + c) = scale(c)·stored.col(c) over rows [begin, begin + count), in double
+/// precision (no scale: single precision). Column by column: contiguous reads and writes,
+/// which the compiler vectorises.
+template <class T>
+void widen_columns(const Eigen::Matrix<T, Eigen::Dynamic, Eigen::Dynamic>& stored,
+                   const Eigen::VectorXd* scale, Eigen::Index first, Eigen::Index begin,
+                   Eigen::Index count, Eigen::Ref<Eigen::MatrixXd> out) {
+  for (Eigen::Index c = 0; c < stored.cols(); ++c) {
+    const T* from = stored.col(c).data() + begin;
+    double* to = out.col(first + c).data();
+    const double s = scale ? (*scale)(c) : 1.0;
+    for (Eigen::Index r = 0; r < count; ++r) to[r] = s * double(from[r]);
+  }
+}
+
 /// Error of the column pair (u, v) stored with rounding errors eu, ev:
 /// ‖ũ ṽᵀ − u vᵀ‖ ≤ eu (‖v‖ + ev) + ‖u‖ ev.
 double column_error(double u_norm, double eu, double v_norm, double ev) {
@@ -77,16 +100,11 @@ AdaptivePrecisionFactors::AdaptivePrecisionFactors(const Eigen::MatrixXd& u, con
       }
   }
   const auto store = [&](const Eigen::MatrixXd& x, Factor& f) {
-    const Eigen::Index n = x.rows(), first16 = columns_.single, first8 = first16 + columns_.fixed16;
     f.single = x.leftCols(columns_.single).cast<float>();
-    f.fixed16.resize(n, columns_.fixed16);
-    f.scale16.resize(columns_.fixed16);
-    for (Eigen::Index c = 0; c < columns_.fixed16; ++c)
-      to_fixed_point<std::int16_t>(x.col(first16 + c), f.fixed16.col(c).data(), f.scale16(c));
-    f.fixed8.resize(n, columns_.fixed8);
-    f.scale8.resize(columns_.fixed8);
-    for (Eigen::Index c = 0; c < columns_.fixed8; ++c)
-      to_fixed_point<std::int8_t>(x.col(first8 + c), f.fixed8.col(c).data(), f.scale8(c));
+    f.fixed16.resize(x.rows(), columns_.fixed16);
+    store_fixed_point(x, columns_.single, f.fixed16, f.scale16);
+    f.fixed8.resize(x.rows(), columns_.fixed8);
+    store_fixed_point(x, columns_.single + columns_.fixed16, f.fixed8, f.scale8);
   };
   store(u, u_);
   store(v, v_);
@@ -94,25 +112,9 @@ AdaptivePrecisionFactors::AdaptivePrecisionFactors(const Eigen::MatrixXd& u, con
 
 void AdaptivePrecisionFactors::Factor::decode(Eigen::Index begin, Eigen::Index count,
                                               Eigen::Ref<Eigen::MatrixXd> out) const {
-  const Eigen::Index first16 = single.cols(), first8 = first16 + fixed16.cols();
-  // Column by column: contiguous reads and writes, which the compiler vectorises.
-  for (Eigen::Index c = 0; c < single.cols(); ++c) {
-    const float* from = single.col(c).data() + begin;
-    double* to = out.col(c).data();
-    for (Eigen::Index r = 0; r < count; ++r) to[r] = double(from[r]);
-  }
-  for (Eigen::Index c = 0; c < fixed16.cols(); ++c) {
-    const std::int16_t* from = fixed16.col(c).data() + begin;
-    double* to = out.col(first16 + c).data();
-    const double s = scale16(c);
-    for (Eigen::Index r = 0; r < count; ++r) to[r] = s * double(from[r]);
-  }
-  for (Eigen::Index c = 0; c < fixed8.cols(); ++c) {
-    const std::int8_t* from = fixed8.col(c).data() + begin;
-    double* to = out.col(first8 + c).data();
-    const double s = scale8(c);
-    for (Eigen::Index r = 0; r < count; ++r) to[r] = s * double(from[r]);
-  }
+  widen_columns(single, nullptr, 0, begin, count, out);
+  widen_columns(fixed16, &scale16, single.cols(), begin, count, out);
+  widen_columns(fixed8, &scale8, single.cols() + fixed16.cols(), begin, count, out);
 }
 
 std::uint64_t AdaptivePrecisionFactors::Factor::bytes() const {
