@@ -122,11 +122,11 @@ BoundarySolution solve_transmission_hmatrix(const geometry::SurfaceMesh& mesh,
   const std::vector<Panel> panels = make_panels(mesh);
   const ClusterTree tree(panels, options.leaf_size);
   const auto& perm = tree.permutation();
-  // Exterior entries attenuated below ε (e^{−κ·gap} < ε, gap > 18.4/κ at the default ε =
-  // 1e−8) are dropped: each is below ε times an unattenuated entry at that distance, the
-  // relative accuracy the compression of the Laplace part works to. (The dense path keeps
-  // entries down to 1e−10, 23/κ; dropping at ε instead stores a third fewer entries and
-  // leaves the solution unchanged to three digits, docs/benchmarks.md.) Their exact count,
+  // Exterior pairs whose centroids are farther apart than 18.4/κ (−ln ε/κ at the default
+  // ε = 1e−8) are dropped: about ε of each row's sum, the relative accuracy the compression
+  // of the Laplace part works to (bem/hierarchical/yukawa_near_field.hpp). The dense path
+  // keeps more (entries down to 1e−10 of an unattenuated one); on the benchmarks' sphere and
+  // thin-walled box the two agree to the digits docs/benchmarks.md lists. Their exact count,
   // before anything is assembled, goes into the memory guard: it varies with κ·h and with
   // the walls' thickness far more than the Laplace part does.
   const double negligible = options.aca_tolerance;

@@ -18,25 +18,18 @@
 
 namespace bemshape::bem {
 
-double yukawa_cutoff_gap(double kappa, double negligible) { return -std::log(negligible) / kappa; }
+double yukawa_cutoff_distance(double kappa, double negligible) { return -std::log(negligible) / kappa; }
 
 namespace {
 
-/// What decides which entries of a row are kept: the cutoff gap g* and the reach of the
-/// candidate search around a panel's box.
+/// What decides which entries of a row are kept: the cutoff distance R* between centroids,
+/// which is also the reach of the candidate search around a panel's box (the boxes of two
+/// panels, around their corners, are no farther apart than their centroids).
 struct Cutoff {
-  double gap = 0.0, reach = 0.0;
-  Cutoff(const std::vector<Panel>& panels, double kappa, double negligible) {
-    double max_radius = 0.0;
-    for (const Panel& p : panels) max_radius = std::max(max_radius, p.radius);
-    // The dense path drops an entry when gap = |c_j − c_k| − r_j − r_k > g*; the distance
-    // of the boxes around the panels is at most |c_j − c_k|, so clusters farther than
-    // g* + 2·max radius hold no kept entry.
-    gap = yukawa_cutoff_gap(kappa, negligible);
-    reach = gap + 2.0 * max_radius;
-  }
+  double distance = 0.0;
+  Cutoff(double kappa, double negligible) : distance(yukawa_cutoff_distance(kappa, negligible)) {}
   bool kept(const Panel& test, const Panel& trial) const {
-    return (test.centroid - trial.centroid).norm() - test.radius - trial.radius <= gap;
+    return (test.centroid - trial.centroid).squaredNorm() <= distance * distance;
   }
 };
 
@@ -49,7 +42,7 @@ void row_columns(const Panel& test, const std::vector<Panel>& panels, const Clus
   BoundingBox box;
   for (const auto& c : test.corners) box.extend(c);
   near.clear();
-  tree.for_each_leaf_near(box, cutoff.reach, stack, [&near](const Cluster& leaf) {
+  tree.for_each_leaf_near(box, cutoff.distance, stack, [&near](const Cluster& leaf) {
     for (Eigen::Index j = leaf.begin; j < leaf.end; ++j) near.push_back(j);
   });
   std::sort(near.begin(), near.end());
@@ -77,7 +70,7 @@ YukawaNearFieldRows yukawa_near_field_rows(const std::vector<Panel>& panels, con
                                            double kappa, double negligible) {
   const auto& perm = tree.permutation();
   const Eigen::Index n = tree.root().size();
-  const Cutoff cutoff(panels, kappa, negligible);
+  const Cutoff cutoff(kappa, negligible);
   YukawaNearFieldRows rows{Eigen::VectorX<Eigen::Index>(n), Eigen::VectorX<Eigen::Index>(n)};
   std::atomic<bool> out_of_memory{false};
 #pragma omp parallel
@@ -110,7 +103,7 @@ YukawaNearField<Scalar> assemble_yukawa_near_field(const std::vector<Panel>& pan
                                                    const YukawaNearFieldRows* rows) {
   const auto& perm = tree.permutation();
   const Eigen::Index n = tree.root().size();
-  const Cutoff cutoff(panels, kappa, negligible);
+  const Cutoff cutoff(kappa, negligible);
   // Two passes, so that the rows are written straight into the matrix and nothing else of
   // its size is ever held: first each row's pairs and runs (yukawa_near_field_rows), then the
   // entries.

@@ -1,11 +1,17 @@
 #pragma once
 // The exterior (Yukawa) operators as one sparse matrix. Gκ = e^{−κr}/(4πr) decays
-// exponentially, so a Galerkin entry between panels whose gap exceeds
-// g* = −ln(YukawaAttenuation::negligible)/κ ≈ 23/κ is below 1e−10 of an unattenuated
-// entry and is zero in the dense path too (bem/galerkin_operators.hpp): with that threshold
-// storing only the rest loses nothing the dense path keeps; the H-matrix solver derives the
-// threshold from its compression tolerance instead. A panel interacts with the panels within about
-// g* + its size, O(1) of them per row whatever N, so the matrix has O(N) entries.
+// exponentially, so a row needs only the panels near its own: the pair (i, j) is kept when
+// the centroids are within the cutoff distance
+//   R* = −ln(ε)/κ   (18.4/κ at ε = 1e−8; 23/κ at the dense path's 1e−10),
+// and everything farther is dropped. What that drops is a fraction ε of each row's sum:
+// on a plane, ∫_{r>R} e^{−κr}/(4πr) 2πr dr = e^{−κR}/(2κ) is e^{−κR} times the whole
+// integral 1/(2κ), and a second wall at distance t (a thin part) adds at most as much
+// again, e^{−κR}/(2κ) of its e^{−κt}/(2κ); the double layer's kernel decays as fast
+// (tests/bem/hierarchical/test_yukawa_near_field.cpp measures the dropped part of each
+// row). The dense path drops less (an entry when e^{−κ·gap} < 1e−10 for the gap
+// |c_i − c_j| − r_i − r_j between the panels, bem/galerkin_operators.hpp), so every pair
+// kept here is an entry it holds too, with the same value. A panel interacts with the
+// panels within R*, O(1) of them per row whatever N, so the matrix has O(N) entries.
 //
 // Layout, in cluster-tree order (bem/hierarchical/cluster_tree.hpp): N × 2N,
 //   Y(i, j) = −Kκ[i, j],   Y(i, N + j) = Vκ[i, j],
@@ -158,9 +164,10 @@ class YukawaNearField {
 /// them (runs no longer than YukawaNearField's kMaxRun).
 Eigen::Index yukawa_near_field_runs(const std::vector<Eigen::Index>& columns);
 
-/// The gap beyond which Yukawa entries attenuated below `negligible` are dropped,
-/// g* = −ln(negligible)/κ [model units].
-double yukawa_cutoff_gap(double kappa, double negligible);
+/// The centroid distance beyond which pairs are dropped, R* = −ln(negligible)/κ [model
+/// units]: the dropped part of a row is about `negligible` of its sum (see the top of this
+/// file).
+double yukawa_cutoff_distance(double kappa, double negligible);
 
 /// The number of pairs each row of Y will hold, in tree order (one per panel within the
 /// cutoff), and the runs they form. The candidate search only, no integrals: what the
@@ -171,10 +178,10 @@ YukawaNearFieldRows yukawa_near_field_rows(const std::vector<Panel>& panels, con
                                            double kappa, double negligible);
 
 /// Assembles Y for the panels in tree order (parallel over rows; each row is computed the
-/// same way whatever the thread count). Pairs of panels whose gap |c_j − c_k| − r_j − r_k
-/// gives e^{−κ·gap} < `negligible` are dropped; the default is the dense path's threshold,
-/// larger values (the H-matrix solver passes ε) trade entries below the compression
-/// tolerance for fewer pairs. If the counted pairs do not fit in the memory the machine has
+/// same way whatever the thread count). Pairs whose centroids are farther apart than
+/// R* = −ln(negligible)/κ are dropped (about `negligible` of each row's sum); the default is
+/// the dense path's threshold, larger values (the H-matrix solver passes ε) trade parts of
+/// the rows below the compression tolerance for fewer pairs. If the counted pairs do not fit in the memory the machine has
 /// left (core/memory.hpp), ResourceError before any is stored. The rows are written in place
 /// into storage of the counted size, so nothing else of the matrix's size is ever held.
 /// `rows`: yukawa_near_field_rows of the same arguments, if already counted.
