@@ -4,14 +4,12 @@
 #include <cmath>
 #include <limits>
 
+#include "bem/hierarchical/mixed_precision_products.hpp"
 #include "core/assert.hpp"
 
 namespace bemshape::bem {
 
 namespace {
-
-/// Rows converted to double per step of a product: the chunk stays in the first-level cache.
-constexpr Eigen::Index kConvertedRows = 128;
 
 /// x in fixed point: q_r = round(x_r/s), s = max|x|/(2^{b−1} − 1), b the width of Int. Writes q
 /// (if not null) and s; returns the rounding error ‖x − s q‖ (0 for a zero column).
@@ -34,25 +32,26 @@ double to_fixed_point(const Eigen::Ref<const Eigen::VectorXd>& x, Int* q, double
   return std::sqrt(error2);
 }
 
-/// Columns [first, first + q.cols()) of x in fixed point: q and one scale per column.
+/// Columns [first, first + count) of x in fixed point: q (x.rows() × count, column-major) and
+/// one scale per column.
 template <class Int>
-void store_fixed_point(const Eigen::MatrixXd& x, Eigen::Index first,
-                       Eigen::Matrix<Int, Eigen::Dynamic, Eigen::Dynamic>& q, Eigen::VectorXd& scale) {
-  scale.resize(q.cols());
-  for (Eigen::Index c = 0; c < q.cols(); ++c) to_fixed_point<Int>(x.col(first + c), q.col(c).data(), scale(c));
+void store_fixed_point(const Eigen::MatrixXd& x, Eigen::Index first, Eigen::Index count, Int* q,
+                       double* scale) {
+  for (Eigen::Index c = 0; c < count; ++c)
+    to_fixed_point<Int>(x.col(first + c), q + c * x.rows(), scale[c]);
 }
 
-/// out.col(first + c) = scale(c)·stored.col(c) over rows [begin, begin + count), in double
-/// precision (no scale: single precision). Column by column: contiguous reads and writes,
-/// which the compiler vectorises.
+/// out.col(first + c) = scale[c]·stored(:, c) over rows [begin, begin + count) for the
+/// `columns` columns of `rows` rows at `stored`, in double precision (no scale: single
+/// precision). Column by column: contiguous reads and writes, which the compiler vectorises.
 template <class T>
-void widen_columns(const Eigen::Matrix<T, Eigen::Dynamic, Eigen::Dynamic>& stored,
-                   const Eigen::VectorXd* scale, Eigen::Index first, Eigen::Index begin,
-                   Eigen::Index count, Eigen::Ref<Eigen::MatrixXd> out) {
-  for (Eigen::Index c = 0; c < stored.cols(); ++c) {
-    const T* from = stored.col(c).data() + begin;
+void widen_columns(const T* stored, Eigen::Index rows, Eigen::Index columns, const double* scale,
+                   Eigen::Index first, Eigen::Index begin, Eigen::Index count,
+                   Eigen::Ref<Eigen::MatrixXd> out) {
+  for (Eigen::Index c = 0; c < columns; ++c) {
+    const T* from = stored + c * rows + begin;
     double* to = out.col(first + c).data();
-    const double s = scale ? (*scale)(c) : 1.0;
+    const double s = scale ? scale[c] : 1.0;
     for (Eigen::Index r = 0; r < count; ++r) to[r] = s * double(from[r]);
   }
 }
@@ -99,66 +98,92 @@ AdaptivePrecisionFactors::AdaptivePrecisionFactors(const Eigen::MatrixXd& u, con
         }
       }
   }
-  const auto store = [&](const Eigen::MatrixXd& x, Factor& f) {
-    f.single = x.leftCols(columns_.single).cast<float>();
-    f.fixed16.resize(x.rows(), columns_.fixed16);
-    store_fixed_point(x, columns_.single, f.fixed16, f.scale16);
-    f.fixed8.resize(x.rows(), columns_.fixed8);
-    store_fixed_point(x, columns_.single + columns_.fixed16, f.fixed8, f.scale8);
+  const Eigen::Index scales = columns_.fixed16 + columns_.fixed8, entries = rows_ + cols_;
+  buffer_.resize(std::size_t(8 * 2 * scales + 4 * entries * columns_.single +
+                             2 * entries * columns_.fixed16 + entries * columns_.fixed8));
+  const auto store = [&](const Eigen::MatrixXd& x, const Factor& f) {
+    // The views point into buffer_, which this constructor owns: writing through them is
+    // writing the buffer.
+    float* single = const_cast<float*>(f.single);
+    for (Eigen::Index c = 0; c < columns_.single; ++c)
+      for (Eigen::Index r = 0; r < x.rows(); ++r) single[c * x.rows() + r] = float(x(r, c));
+    store_fixed_point(x, columns_.single, columns_.fixed16, const_cast<std::int16_t*>(f.fixed16),
+                      const_cast<double*>(f.scale16));
+    store_fixed_point(x, columns_.single + columns_.fixed16, columns_.fixed8,
+                      const_cast<std::int8_t*>(f.fixed8), const_cast<double*>(f.scale8));
   };
-  store(u, u_);
-  store(v, v_);
+  store(u, factor(true));
+  store(v, factor(false));
+}
+
+AdaptivePrecisionFactors::Factor AdaptivePrecisionFactors::factor(bool u) const {
+  const std::byte* base = buffer_.data();
+  const Eigen::Index f16 = columns_.fixed16, f8 = columns_.fixed8, a = columns_.single;
+  Factor f;
+  f.rows = u ? rows_ : cols_;
+  f.columns = columns_;
+  // Offsets of U's part of each section, then V's (whose sections follow U's).
+  const Eigen::Index scales_u = 0, scales_v = 8 * (f16 + f8);
+  const Eigen::Index singles = 16 * (f16 + f8), fixed16 = singles + 4 * (rows_ + cols_) * a,
+                     fixed8 = fixed16 + 2 * (rows_ + cols_) * f16;
+  const Eigen::Index skip = u ? 0 : rows_;  // V's columns follow all of U's in each section
+  f.scale16 = reinterpret_cast<const double*>(base + (u ? scales_u : scales_v));
+  f.scale8 = f.scale16 + f16;
+  f.single = reinterpret_cast<const float*>(base + singles) + skip * a;
+  f.fixed16 = reinterpret_cast<const std::int16_t*>(base + fixed16) + skip * f16;
+  f.fixed8 = reinterpret_cast<const std::int8_t*>(base + fixed8) + skip * f8;
+  return f;
 }
 
 void AdaptivePrecisionFactors::Factor::decode(Eigen::Index begin, Eigen::Index count,
                                               Eigen::Ref<Eigen::MatrixXd> out) const {
-  widen_columns(single, nullptr, 0, begin, count, out);
-  widen_columns(fixed16, &scale16, single.cols(), begin, count, out);
-  widen_columns(fixed8, &scale8, single.cols() + fixed16.cols(), begin, count, out);
+  widen_columns(single, rows, columns.single, nullptr, 0, begin, count, out);
+  widen_columns(fixed16, rows, columns.fixed16, scale16, columns.single, begin, count, out);
+  widen_columns(fixed8, rows, columns.fixed8, scale8, columns.single + columns.fixed16, begin, count, out);
 }
 
-std::uint64_t AdaptivePrecisionFactors::Factor::bytes() const {
-  return 4 * std::uint64_t(single.size()) + 2 * std::uint64_t(fixed16.size()) +
-         std::uint64_t(fixed8.size()) + 8 * std::uint64_t(scale16.size() + scale8.size());
+void AdaptivePrecisionFactors::Factor::add_product(const Eigen::Ref<const Eigen::MatrixXd>& t,
+                                                   Eigen::Ref<Eigen::MatrixXd> out) const {
+  const Eigen::Index a = columns.single, b = a + columns.fixed16;
+  add_scaled_columns(single, rows, rows, a, nullptr, t.topRows(a), out);
+  add_scaled_columns(fixed16, rows, rows, columns.fixed16, scale16, t.middleRows(a, columns.fixed16), out);
+  add_scaled_columns(fixed8, rows, rows, columns.fixed8, scale8, t.middleRows(b, columns.fixed8), out);
+}
+
+void AdaptivePrecisionFactors::Factor::add_transpose_product(const Eigen::Ref<const Eigen::MatrixXd>& x,
+                                                             Eigen::Ref<Eigen::MatrixXd> t) const {
+  const Eigen::Index a = columns.single, b = a + columns.fixed16;
+  add_scaled_column_dots(single, rows, rows, a, nullptr, x, t.topRows(a));
+  add_scaled_column_dots(fixed16, rows, rows, columns.fixed16, scale16, x, t.middleRows(a, columns.fixed16));
+  add_scaled_column_dots(fixed8, rows, rows, columns.fixed8, scale8, x, t.middleRows(b, columns.fixed8));
 }
 
 void AdaptivePrecisionFactors::multiply_v_transpose(const Eigen::Ref<const Eigen::MatrixXd>& x,
-                                                    Eigen::MatrixXd& t, Eigen::MatrixXd& chunk) const {
+                                                    Eigen::MatrixXd& t) const {
   BEMSHAPE_ASSERT(x.rows() == cols_, "low-rank product: x must have one row per column of the block");
   t.setZero(rank(), x.cols());
-  for (Eigen::Index i = 0; i < cols_; i += kConvertedRows) {
-    const Eigen::Index m = std::min(kConvertedRows, cols_ - i);
-    chunk.resize(m, rank());
-    v_.decode(i, m, chunk);
-    t.noalias() += chunk.transpose() * x.middleRows(i, m);
-  }
+  factor(false).add_transpose_product(x, t);
 }
 
 void AdaptivePrecisionFactors::add_u_product(const Eigen::Ref<const Eigen::MatrixXd>& t,
-                                             Eigen::Ref<Eigen::MatrixXd> out,
-                                             Eigen::MatrixXd& chunk) const {
+                                             Eigen::Ref<Eigen::MatrixXd> out) const {
   BEMSHAPE_ASSERT(t.rows() == rank() && out.rows() == rows_ && out.cols() == t.cols(),
                   "low-rank product: t must be rank × k and out rows × k");
-  for (Eigen::Index i = 0; i < rows_; i += kConvertedRows) {
-    const Eigen::Index m = std::min(kConvertedRows, rows_ - i);
-    chunk.resize(m, rank());
-    u_.decode(i, m, chunk);
-    out.middleRows(i, m).noalias() += chunk * t;
-  }
+  factor(true).add_product(t, out);
 }
 
 Eigen::MatrixXd AdaptivePrecisionFactors::u_rows(Eigen::Index begin, Eigen::Index count) const {
   Eigen::MatrixXd out(count, rank());
-  u_.decode(begin, count, out);
+  factor(true).decode(begin, count, out);
   return out;
 }
 
 Eigen::MatrixXd AdaptivePrecisionFactors::v_rows(Eigen::Index begin, Eigen::Index count) const {
   Eigen::MatrixXd out(count, rank());
-  v_.decode(begin, count, out);
+  factor(false).decode(begin, count, out);
   return out;
 }
 
-std::uint64_t AdaptivePrecisionFactors::bytes() const { return u_.bytes() + v_.bytes(); }
+std::uint64_t AdaptivePrecisionFactors::bytes() const { return buffer_.size(); }
 
 }  // namespace bemshape::bem

@@ -22,10 +22,12 @@
 // most β (all r² splits are tried; r is a block's rank). Since the σ_i decrease, the tail
 // goes to 8 bits and the middle to 16. On Laplace blocks at ε = 1e−8 that is about half
 // the columns (docs/benchmarks.md has the measured memory). Products are computed in
-// double precision; the stored entries are converted a few rows at a time and no double
-// copy is held.
+// double precision; each stored column is widened in registers as the product reads it
+// (bem/hierarchical/mixed_precision_products.hpp), and no double copy is held.
 
+#include <cstddef>
 #include <cstdint>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -49,12 +51,10 @@ class AdaptivePrecisionFactors {
   Eigen::Index rank() const { return columns_.single + columns_.fixed16 + columns_.fixed8; }
   const Columns& columns() const { return columns_; }
 
-  /// t = Vᵀ x (rank × k) for x of cols() rows. `chunk` is scratch space.
-  void multiply_v_transpose(const Eigen::Ref<const Eigen::MatrixXd>& x, Eigen::MatrixXd& t,
-                            Eigen::MatrixXd& chunk) const;
+  /// t = Vᵀ x (rank × k) for x of cols() rows.
+  void multiply_v_transpose(const Eigen::Ref<const Eigen::MatrixXd>& x, Eigen::MatrixXd& t) const;
   /// out += U t for t of rank() rows (out: rows() × t.cols()).
-  void add_u_product(const Eigen::Ref<const Eigen::MatrixXd>& t, Eigen::Ref<Eigen::MatrixXd> out,
-                     Eigen::MatrixXd& chunk) const;
+  void add_u_product(const Eigen::Ref<const Eigen::MatrixXd>& t, Eigen::Ref<Eigen::MatrixXd> out) const;
 
   /// Rows [begin, begin + count) of the stored U or V, in double precision.
   Eigen::MatrixXd u_rows(Eigen::Index begin, Eigen::Index count) const;
@@ -66,17 +66,32 @@ class AdaptivePrecisionFactors {
   std::uint64_t entries() const { return std::uint64_t(rows_ + cols_) * std::uint64_t(rank()); }
 
  private:
-  /// One factor (U or V): its columns in the three formats, with the fixed-point scales.
+  /// One factor (U or V), viewed in the buffer: its columns in the three formats (column-major,
+  /// `rows` rows each) and the fixed-point scales.
   struct Factor {
-    Eigen::MatrixXf single;
-    Eigen::Matrix<std::int16_t, Eigen::Dynamic, Eigen::Dynamic> fixed16;
-    Eigen::Matrix<std::int8_t, Eigen::Dynamic, Eigen::Dynamic> fixed8;
-    Eigen::VectorXd scale16, scale8;
+    Eigen::Index rows = 0;
+    Columns columns;
+    const float* single = nullptr;
+    const std::int16_t* fixed16 = nullptr;
+    const std::int8_t* fixed8 = nullptr;
+    const double* scale16 = nullptr;
+    const double* scale8 = nullptr;
     /// Rows [begin, begin + count) in double precision (count × rank).
     void decode(Eigen::Index begin, Eigen::Index count, Eigen::Ref<Eigen::MatrixXd> out) const;
-    std::uint64_t bytes() const;
+    /// out += F t (t: rank × k) and t += Fᵀ x (x: rows × k), in double arithmetic
+    /// (bem/hierarchical/mixed_precision_products.hpp).
+    void add_product(const Eigen::Ref<const Eigen::MatrixXd>& t, Eigen::Ref<Eigen::MatrixXd> out) const;
+    void add_transpose_product(const Eigen::Ref<const Eigen::MatrixXd>& x, Eigen::Ref<Eigen::MatrixXd> t) const;
   };
-  Factor u_, v_;
+  /// The views of U (`u` true) or V into buffer_.
+  Factor factor(bool u) const;
+
+  /// Everything in one allocation, by decreasing alignment: the scales (U's 16-bit, U's
+  /// 8-bit, V's 16-bit, V's 8-bit), the single-precision columns (U's, V's), the 16-bit
+  /// columns, the 8-bit columns. A block holds one heap allocation instead of one per
+  /// format and factor: at 10⁵ panels there are 10⁵ blocks and more, and each allocation
+  /// costs its own header and alignment padding.
+  std::vector<std::byte> buffer_;
   Eigen::Index rows_ = 0, cols_ = 0;
   Columns columns_;
 };

@@ -8,6 +8,7 @@
 
 #include <omp.h>
 
+#include "bem/hierarchical/mixed_precision_products.hpp"
 #include "core/cancellation.hpp"
 
 #include "core/assert.hpp"
@@ -163,27 +164,18 @@ HierarchicalMatrix::HierarchicalMatrix(const ClusterTree& row_tree, const Cluste
 
 namespace {
 
-/// Rows of a single-precision matrix converted to double at a time: the chunk stays in cache.
-constexpr Eigen::Index kConvertedRows = 128;
-
-/// out += A x for A stored in single precision, in double arithmetic. A is converted
-/// kConvertedRows rows at a time into `chunk`, so the product reads 4 bytes per entry of A
-/// and writes no double copy of it.
+/// out += A x for A stored in single precision, in double arithmetic: the product reads 4
+/// bytes per entry of A and writes no double copy of it.
 void add_single_precision_product(const Eigen::MatrixXf& a, const Eigen::MatrixXd& x,
-                                  Eigen::Ref<Eigen::MatrixXd> out, Eigen::MatrixXd& chunk) {
-  for (Eigen::Index i = 0; i < a.rows(); i += kConvertedRows) {
-    const Eigen::Index m = std::min(kConvertedRows, a.rows() - i);
-    chunk = a.middleRows(i, m).cast<double>();
-    out.middleRows(i, m).noalias() += chunk * x;
-  }
+                                  Eigen::Ref<Eigen::MatrixXd> out) {
+  add_scaled_columns(a.data(), a.rows(), a.rows(), a.cols(), nullptr, x, out);
 }
 
-/// product = U (Vᵀ x) for factors stored in single precision or narrower.
-void narrow_factors_product(const AdaptivePrecisionFactors& factors, const Eigen::MatrixXd& x,
-                            Eigen::MatrixXd& product, Eigen::MatrixXd& t, Eigen::MatrixXd& chunk) {
-  factors.multiply_v_transpose(x, t, chunk);
-  product.setZero(factors.rows(), x.cols());
-  factors.add_u_product(t, product, chunk);
+/// out += U (Vᵀ x) for factors stored in single precision or narrower.
+void add_narrow_factors_product(const AdaptivePrecisionFactors& factors, const Eigen::MatrixXd& x,
+                                Eigen::Ref<Eigen::MatrixXd> out, Eigen::MatrixXd& t) {
+  factors.multiply_v_transpose(x, t);
+  factors.add_u_product(t, out);
 }
 
 }  // namespace
@@ -210,22 +202,27 @@ void HierarchicalMatrix::multiply_add(const Eigen::Ref<const Eigen::MatrixXd>& x
   {
     Eigen::MatrixXd& mine = partial[static_cast<size_t>(omp_get_thread_num())];
     mine = Eigen::MatrixXd::Zero(rows_, y.cols());
-    Eigen::MatrixXd product, t, chunk;
+    Eigen::MatrixXd product, t;
 #pragma omp for schedule(static, 1)
     for (std::size_t k = 0; k < blocks_.size(); ++k) {
       const Block& b = blocks_[k];
       const Eigen::MatrixXd xs = gather(x, b);
       const Eigen::Index m = b.row_end - b.row_begin;
+      // The narrow blocks add straight into the rows of one output; the others, and several
+      // outputs, go through `product`.
+      const bool direct = outputs_ == 1 && b.single_precision;
+      if (!direct) product.setZero(outputs_ * m, xs.cols());
+      Eigen::Ref<Eigen::MatrixXd> target = direct ? Eigen::Ref<Eigen::MatrixXd>(mine.middleRows(b.row_begin, m))
+                                                  : Eigen::Ref<Eigen::MatrixXd>(product);
       if (b.is_low_rank && b.single_precision)
-        narrow_factors_product(b.factors, xs, product, t, chunk);
+        add_narrow_factors_product(b.factors, xs, target, t);
       else if (b.is_low_rank)
         product.noalias() = b.low_rank.U * (b.low_rank.V.transpose() * xs);
-      else if (b.single_precision) {
-        product.setZero(b.dense_single.rows(), xs.cols());
-        add_single_precision_product(b.dense_single, xs, product, chunk);
-      }
+      else if (b.single_precision)
+        add_single_precision_product(b.dense_single, xs, target);
       else
         product.noalias() = b.dense * xs;
+      if (direct) continue;
       for (Eigen::Index j = 0; j < vectors; ++j)
         for (int o = 0; o < outputs_; ++o)
           mine.col(j * outputs_ + o).segment(b.row_begin, m) += product.col(j).segment(o * m, m);
@@ -354,7 +351,7 @@ void HierarchicalMatrix::multiply_add_grouped(const GroupedColumns& grouped,
   {
     Eigen::MatrixXd& mine = partial[static_cast<size_t>(omp_get_thread_num())];
     mine = Eigen::MatrixXd::Zero(rows_, y.cols());
-    Eigen::MatrixXd xs, product, chunk;
+    Eigen::MatrixXd xs, product;
 #pragma omp for schedule(static, 1)
     for (std::size_t k = 0; k < blocks_.size(); ++k) {
       const Block& b = blocks_[k];
@@ -375,7 +372,7 @@ void HierarchicalMatrix::multiply_add_grouped(const GroupedColumns& grouped,
         mine.middleRows(b.row_begin, m).noalias() += b.low_rank.U * t;
         continue;
       }
-      b.factors.add_u_product(t, mine.middleRows(b.row_begin, m), chunk);
+      b.factors.add_u_product(t, mine.middleRows(b.row_begin, m));
     }
   }
   for (const Eigen::MatrixXd& p : partial) y += p;

@@ -80,14 +80,14 @@ TEST_CASE("Adaptive-precision factors: products are those of the stored factors"
   Eigen::MatrixXd x(n, 3);
   for (double& e : x.reshaped()) e = g(rng);
 
-  Eigen::MatrixXd t, chunk;
-  f.multiply_v_transpose(x, t, chunk);
+  Eigen::MatrixXd t;
+  f.multiply_v_transpose(x, t);
   const Eigen::MatrixXd vs = f.v_rows(0, n), us = f.u_rows(0, m);
   const Eigen::MatrixXd t_expected = vs.transpose() * x;
   CHECK((t - t_expected).norm() <= 1e-14 * t_expected.norm());
 
   Eigen::MatrixXd out = Eigen::MatrixXd::Ones(m, 3);
-  f.add_u_product(t, out, chunk);
+  f.add_u_product(t, out);
   const Eigen::MatrixXd out_expected = Eigen::MatrixXd::Ones(m, 3) + us * t;
   CHECK((out - out_expected).norm() <= 1e-14 * out_expected.norm());
 
@@ -100,11 +100,11 @@ TEST_CASE("Adaptive-precision factors: rank zero and zero columns") {
   const bem::AdaptivePrecisionFactors empty(Eigen::MatrixXd(7, 0), Eigen::MatrixXd(5, 0));
   CHECK(empty.rank() == 0);
   CHECK(empty.bytes() == 0);
-  Eigen::MatrixXd t, chunk;
-  empty.multiply_v_transpose(Eigen::MatrixXd::Ones(5, 2), t, chunk);
+  Eigen::MatrixXd t;
+  empty.multiply_v_transpose(Eigen::MatrixXd::Ones(5, 2), t);
   CHECK(t.rows() == 0);
   Eigen::MatrixXd out = Eigen::MatrixXd::Zero(7, 2);
-  empty.add_u_product(t, out, chunk);
+  empty.add_u_product(t, out);
   CHECK(out.isZero(0.0));
 
   // A zero trailing column is stored (in 8 bits, scale 0) and decodes to zero.

@@ -1,0 +1,144 @@
+#pragma once
+// Products of a matrix stored narrow — single precision, or 16-/8-bit fixed point with one
+// scale per column — with a few double-precision vectors, in double arithmetic and without
+// a widened copy of the matrix:
+//   add_scaled_columns:     Y(:, l) += Σ_c s_c·C(c, l)·A(:, c)      (Y += A S C)
+//   add_scaled_column_dots: T(c, l) += s_c·Σ_r A(r, c)·X(r, l)      (T += S Aᵀ X)
+// for A (rows × cols, column-major with leading dimension lda), S = diag(s) (all ones without
+// scales) and k = X.cols() = C.cols() right-hand sides. Each stored column is read once for
+// all k of them and widened in registers; the low-rank factors' products
+// (adaptive_precision_factors.hpp) and the single-precision near-field blocks
+// (hierarchical_matrix.cpp) go through these two functions.
+//
+// The sums are formed in a fixed order (column by column; each dot product in 8 partial sums
+// over rows r ≡ j mod 8, added at the end), so a product is the same on every run and for
+// every thread count.
+
+#include <algorithm>
+#include <cstring>
+
+#include <Eigen/Core>
+
+namespace bemshape::bem {
+
+namespace mixed_precision_detail {
+
+/// Rows of Y updated per pass over A's columns: the k output segments stay in the first-level
+/// cache while every column adds to them.
+constexpr Eigen::Index kRowBlock = 256;
+
+/// Eight doubles, one vector register with AVX-512 (two with AVX2): the compiler's generic
+/// vectors, so that 8 stored entries are widened and multiplied at once whatever the row
+/// count (auto-vectorised loops over short columns fall back to scalar code).
+constexpr int kLanes = 8;
+typedef double Lanes __attribute__((vector_size(kLanes * sizeof(double))));
+
+/// Entries r … r + 7 of a stored column, widened to double.
+template <class T>
+inline Lanes widen(const T* from) {
+  typedef T Stored __attribute__((vector_size(kLanes * sizeof(T))));
+  Stored v;
+  std::memcpy(&v, from, sizeof v);
+  return __builtin_convertvector(v, Lanes);
+}
+
+inline Lanes load(const double* from) {
+  Lanes v;
+  std::memcpy(&v, from, sizeof v);
+  return v;
+}
+
+inline void store(double* to, Lanes v) { std::memcpy(to, &v, sizeof v); }
+
+template <int K, class T>
+void add_scaled_columns_k(const T* a, Eigen::Index lda, Eigen::Index rows, Eigen::Index cols,
+                          const double* scale, const double* coefficients, Eigen::Index ldc,
+                          double* y, Eigen::Index ldy) {
+  for (Eigen::Index r0 = 0; r0 < rows; r0 += kRowBlock) {
+    const Eigen::Index length = std::min(kRowBlock, rows - r0);
+    const Eigen::Index body = length - length % kLanes;
+    for (Eigen::Index c = 0; c < cols; ++c) {
+      const T* column = a + c * lda + r0;
+      const double s = scale ? scale[c] : 1.0;
+      double factor[K];
+      for (int l = 0; l < K; ++l) factor[l] = s * coefficients[c + l * ldc];
+      for (Eigen::Index r = 0; r < body; r += kLanes) {
+        const Lanes v = widen(column + r);
+        for (int l = 0; l < K; ++l) {
+          double* out = y + l * ldy + r0 + r;
+          store(out, load(out) + factor[l] * v);
+        }
+      }
+      for (Eigen::Index r = body; r < length; ++r)
+        for (int l = 0; l < K; ++l) y[l * ldy + r0 + r] += factor[l] * double(column[r]);
+    }
+  }
+}
+
+template <int K, class T>
+void add_scaled_column_dots_k(const T* a, Eigen::Index lda, Eigen::Index rows, Eigen::Index cols,
+                              const double* scale, const double* x, Eigen::Index ldx, double* t,
+                              Eigen::Index ldt) {
+  const Eigen::Index body = rows - rows % kLanes;
+  for (Eigen::Index c = 0; c < cols; ++c) {
+    const T* column = a + c * lda;
+    Lanes partial[K];
+    for (int l = 0; l < K; ++l) partial[l] = Lanes{};
+    for (Eigen::Index r = 0; r < body; r += kLanes) {
+      const Lanes v = widen(column + r);
+      for (int l = 0; l < K; ++l) partial[l] += v * load(x + l * ldx + r);
+    }
+    const double s = scale ? scale[c] : 1.0;
+    for (int l = 0; l < K; ++l) {
+      double sum = 0.0;
+      for (Eigen::Index r = body; r < rows; ++r) sum += double(column[r]) * x[l * ldx + r];
+      for (int j = 0; j < kLanes; ++j) sum += partial[l][j];
+      t[c + l * ldt] += s * sum;
+    }
+  }
+}
+
+}  // namespace mixed_precision_detail
+
+/// Y += A·diag(s)·C: A is rows × cols at `a` (column-major, leading dimension lda; float,
+/// int16_t or int8_t), s the columns' scales (nullptr: all ones), C cols × k, Y rows × k.
+template <class T>
+void add_scaled_columns(const T* a, Eigen::Index lda, Eigen::Index rows, Eigen::Index cols,
+                        const double* scale, const Eigen::Ref<const Eigen::MatrixXd>& c,
+                        Eigen::Ref<Eigen::MatrixXd> y) {
+  using namespace mixed_precision_detail;
+  for (Eigen::Index l = 0; l < c.cols();) {
+    const Eigen::Index k = std::min<Eigen::Index>(4, c.cols() - l);
+    const double* cl = c.data() + l * c.outerStride();
+    double* yl = y.data() + l * y.outerStride();
+    switch (k) {
+      case 1: add_scaled_columns_k<1>(a, lda, rows, cols, scale, cl, c.outerStride(), yl, y.outerStride()); break;
+      case 2: add_scaled_columns_k<2>(a, lda, rows, cols, scale, cl, c.outerStride(), yl, y.outerStride()); break;
+      case 3: add_scaled_columns_k<3>(a, lda, rows, cols, scale, cl, c.outerStride(), yl, y.outerStride()); break;
+      default: add_scaled_columns_k<4>(a, lda, rows, cols, scale, cl, c.outerStride(), yl, y.outerStride()); break;
+    }
+    l += k;
+  }
+}
+
+/// T += diag(s)·Aᵀ·X: A as for add_scaled_columns, X rows × k, T cols × k.
+template <class T>
+void add_scaled_column_dots(const T* a, Eigen::Index lda, Eigen::Index rows, Eigen::Index cols,
+                            const double* scale, const Eigen::Ref<const Eigen::MatrixXd>& x,
+                            Eigen::Ref<Eigen::MatrixXd> t) {
+  using namespace mixed_precision_detail;
+  for (Eigen::Index l = 0; l < x.cols();) {
+    const Eigen::Index k = std::min<Eigen::Index>(4, x.cols() - l);
+    const double* xl = x.data() + l * x.outerStride();
+    double* tl = t.data() + l * t.outerStride();
+    switch (k) {
+      case 1: add_scaled_column_dots_k<1>(a, lda, rows, cols, scale, xl, x.outerStride(), tl, t.outerStride()); break;
+      case 2: add_scaled_column_dots_k<2>(a, lda, rows, cols, scale, xl, x.outerStride(), tl, t.outerStride()); break;
+      case 3: add_scaled_column_dots_k<3>(a, lda, rows, cols, scale, xl, x.outerStride(), tl, t.outerStride()); break;
+      default: add_scaled_column_dots_k<4>(a, lda, rows, cols, scale, xl, x.outerStride(), tl, t.outerStride()); break;
+    }
+    l += k;
+  }
+}
+
+}  // namespace bemshape::bem
