@@ -41,7 +41,7 @@ ClusterBlockPreconditioner::ClusterBlockPreconditioner(const ClusterTree& tree,
         });
       }
       interior[t - first].resize(0, 0);
-      factors_[t].compute(local.cast<float>());
+      factors_[t] = FixedPointLu(local.cast<float>());
     }
   }
 }
@@ -61,18 +61,18 @@ void ClusterBlockPreconditioner::apply(const Eigen::MatrixXd& r, Eigen::MatrixXd
   for (std::size_t t = 0; t < ranges_.size(); ++t) {
     const auto [begin, end] = ranges_[t];
     const Eigen::Index s = end - begin;
-    Eigen::MatrixXf local(2 * s, r.cols());
-    local.topRows(s) = r.middleRows(begin, s).cast<float>();
-    local.bottomRows(s) = r.middleRows(n_ + begin, s).cast<float>();
-    const Eigen::MatrixXf solved = factors_[t].solve(local);
-    z.middleRows(begin, s) = solved.topRows(s).cast<double>();
-    z.middleRows(n_ + begin, s) = solved.bottomRows(s).cast<double>();
+    Eigen::MatrixXd local(2 * s, r.cols());
+    local.topRows(s) = r.middleRows(begin, s);
+    local.bottomRows(s) = r.middleRows(n_ + begin, s);
+    factors_[t].solve_in_place(local);
+    z.middleRows(begin, s) = local.topRows(s);
+    z.middleRows(n_ + begin, s) = local.bottomRows(s);
   }
 }
 
 std::uint64_t ClusterBlockPreconditioner::bytes() const {
   std::uint64_t total = 0;
-  for (const auto& f : factors_) total += 4 * std::uint64_t(f.matrixLU().size());
+  for (const auto& f : factors_) total += f.bytes();
   return total;
 }
 
