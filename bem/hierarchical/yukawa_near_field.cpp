@@ -1,6 +1,5 @@
 #include "bem/hierarchical/yukawa_near_field.hpp"
 
-#include <algorithm>
 #include <atomic>
 #include <cstdint>
 #include <limits>
@@ -24,32 +23,33 @@ namespace {
 
 /// What decides which entries of a row are kept: the cutoff distance R* between centroids,
 /// which is also the reach of the candidate search around a panel's box (the boxes of two
-/// panels, around their corners, are no farther apart than their centroids).
+/// panels, around their corners, are no farther apart than their centroids). The centroids
+/// are copied in tree order, so that a leaf's candidates are read contiguously.
 struct Cutoff {
   double distance = 0.0;
-  Cutoff(double kappa, double negligible) : distance(yukawa_cutoff_distance(kappa, negligible)) {}
-  bool kept(const Panel& test, const Panel& trial) const {
-    return (test.centroid - trial.centroid).squaredNorm() <= distance * distance;
+  Eigen::Matrix3Xd centroids;  ///< column j: the centroid of the panel at tree position j
+  Cutoff(const std::vector<Panel>& panels, const ClusterTree& tree, double kappa, double negligible)
+      : distance(yukawa_cutoff_distance(kappa, negligible)), centroids(3, Eigen::Index(panels.size())) {
+    const auto& perm = tree.permutation();
+    for (Eigen::Index j = 0; j < centroids.cols(); ++j) centroids.col(j) = panels[size_t(perm[size_t(j)])].centroid;
+  }
+  bool kept(const Eigen::Vector3d& test, Eigen::Index j) const {
+    return (test - centroids.col(j)).squaredNorm() <= distance * distance;
   }
 };
 
 /// The columns of one row: tree positions, in increasing order, of the panels the cutoff
-/// keeps for `test` among those whose boxes come within the reach of its box. `near` and
-/// `stack` are scratch space.
-void row_columns(const Panel& test, const std::vector<Panel>& panels, const ClusterTree& tree,
-                 const Cutoff& cutoff, std::vector<Eigen::Index>& near, std::vector<int>& stack,
-                 std::vector<Eigen::Index>& columns) {
+/// keeps for `test` among those whose boxes come within the reach of its box (the leaves
+/// are visited left to right, so the positions come out sorted). `stack` is scratch space.
+void row_columns(const Panel& test, const ClusterTree& tree, const Cutoff& cutoff,
+                 std::vector<int>& stack, std::vector<Eigen::Index>& columns) {
   BoundingBox box;
   for (const auto& c : test.corners) box.extend(c);
-  near.clear();
-  tree.for_each_leaf_near(box, cutoff.distance, stack, [&near](const Cluster& leaf) {
-    for (Eigen::Index j = leaf.begin; j < leaf.end; ++j) near.push_back(j);
-  });
-  std::sort(near.begin(), near.end());
-  const auto& perm = tree.permutation();
   columns.clear();
-  for (const Eigen::Index j : near)
-    if (cutoff.kept(test, panels[size_t(perm[size_t(j)])])) columns.push_back(j);
+  tree.for_each_leaf_near(box, cutoff.distance, stack, [&](const Cluster& leaf) {
+    for (Eigen::Index j = leaf.begin; j < leaf.end; ++j)
+      if (cutoff.kept(test.centroid, j)) columns.push_back(j);
+  });
 }
 
 ResourceError ran_out_of_memory(Eigen::Index n) {
@@ -70,19 +70,19 @@ YukawaNearFieldRows yukawa_near_field_rows(const std::vector<Panel>& panels, con
                                            double kappa, double negligible) {
   const auto& perm = tree.permutation();
   const Eigen::Index n = tree.root().size();
-  const Cutoff cutoff(kappa, negligible);
+  const Cutoff cutoff(panels, tree, kappa, negligible);
   YukawaNearFieldRows rows{Eigen::VectorX<Eigen::Index>(n), Eigen::VectorX<Eigen::Index>(n)};
   std::atomic<bool> out_of_memory{false};
 #pragma omp parallel
   {
-    std::vector<Eigen::Index> near, kept;
+    std::vector<Eigen::Index> kept;
     std::vector<int> stack;
 #pragma omp for schedule(dynamic, 64)
     for (Eigen::Index i = 0; i < n; ++i) {
       if (cancellation_requested() || out_of_memory) continue;
       try {
         const Panel& test = panels[size_t(perm[size_t(i)])];
-        row_columns(test, panels, tree, cutoff, near, stack, kept);
+        row_columns(test, tree, cutoff, stack, kept);
         rows.pairs(i) = Eigen::Index(kept.size());
         rows.runs(i) = yukawa_near_field_runs(kept);
       } catch (const std::bad_alloc&) {
@@ -103,7 +103,7 @@ YukawaNearField<Scalar> assemble_yukawa_near_field(const std::vector<Panel>& pan
                                                    const YukawaNearFieldRows* rows) {
   const auto& perm = tree.permutation();
   const Eigen::Index n = tree.root().size();
-  const Cutoff cutoff(kappa, negligible);
+  const Cutoff cutoff(panels, tree, kappa, negligible);
   // Two passes, so that the rows are written straight into the matrix and nothing else of
   // its size is ever held: first each row's pairs and runs (yukawa_near_field_rows), then the
   // entries.
@@ -136,7 +136,6 @@ YukawaNearField<Scalar> assemble_yukawa_near_field(const std::vector<Panel>& pan
   std::atomic<Eigen::Index> rows_done{0};
 #pragma omp parallel
   {
-    std::vector<Eigen::Index> near;
     std::vector<int> stack;
     std::vector<Eigen::Index> kept, faces;
     std::vector<GalerkinOperators<YukawaKernel>::Entry> entries;
@@ -147,7 +146,7 @@ YukawaNearField<Scalar> assemble_yukawa_near_field(const std::vector<Panel>& pan
       if (cancellation_requested() || out_of_memory) continue;
       try {
         const Panel& test = panels[size_t(perm[size_t(i)])];
-        row_columns(test, panels, tree, cutoff, near, stack, kept);
+        row_columns(test, tree, cutoff, stack, kept);
         faces.resize(kept.size());
         for (size_t t = 0; t < kept.size(); ++t) faces[t] = perm[size_t(kept[t])];
         y.set_columns(i, kept);
