@@ -16,6 +16,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <type_traits>
 
 #include <Eigen/Core>
 
@@ -98,6 +99,22 @@ void add_scaled_column_dots_k(const T* a, Eigen::Index lda, Eigen::Index rows, E
   }
 }
 
+/// Calls run(K, l) for the right-hand sides l … l + K − 1, four at a time (K a compile-time
+/// constant, std::integral_constant<int, K>): the kernels keep K sums in registers.
+template <class Run>
+void in_groups_of_four(Eigen::Index columns, Run&& run) {
+  for (Eigen::Index l = 0; l < columns;) {
+    const Eigen::Index k = std::min<Eigen::Index>(4, columns - l);
+    switch (k) {
+      case 1: run(std::integral_constant<int, 1>{}, l); break;
+      case 2: run(std::integral_constant<int, 2>{}, l); break;
+      case 3: run(std::integral_constant<int, 3>{}, l); break;
+      default: run(std::integral_constant<int, 4>{}, l); break;
+    }
+    l += k;
+  }
+}
+
 }  // namespace mixed_precision_detail
 
 /// Y += A·diag(s)·C: A is rows × cols at `a` (column-major, leading dimension lda; float,
@@ -107,18 +124,10 @@ void add_scaled_columns(const T* a, Eigen::Index lda, Eigen::Index rows, Eigen::
                         const double* scale, const Eigen::Ref<const Eigen::MatrixXd>& c,
                         Eigen::Ref<Eigen::MatrixXd> y) {
   using namespace mixed_precision_detail;
-  for (Eigen::Index l = 0; l < c.cols();) {
-    const Eigen::Index k = std::min<Eigen::Index>(4, c.cols() - l);
-    const double* cl = c.data() + l * c.outerStride();
-    double* yl = y.data() + l * y.outerStride();
-    switch (k) {
-      case 1: add_scaled_columns_k<1>(a, lda, rows, cols, scale, cl, c.outerStride(), yl, y.outerStride()); break;
-      case 2: add_scaled_columns_k<2>(a, lda, rows, cols, scale, cl, c.outerStride(), yl, y.outerStride()); break;
-      case 3: add_scaled_columns_k<3>(a, lda, rows, cols, scale, cl, c.outerStride(), yl, y.outerStride()); break;
-      default: add_scaled_columns_k<4>(a, lda, rows, cols, scale, cl, c.outerStride(), yl, y.outerStride()); break;
-    }
-    l += k;
-  }
+  in_groups_of_four(c.cols(), [&](auto k, Eigen::Index l) {
+    add_scaled_columns_k<decltype(k)::value>(a, lda, rows, cols, scale, c.data() + l * c.outerStride(),
+                                            c.outerStride(), y.data() + l * y.outerStride(), y.outerStride());
+  });
 }
 
 /// T += diag(s)·Aᵀ·X: A as for add_scaled_columns, X rows × k, T cols × k.
@@ -127,18 +136,10 @@ void add_scaled_column_dots(const T* a, Eigen::Index lda, Eigen::Index rows, Eig
                             const double* scale, const Eigen::Ref<const Eigen::MatrixXd>& x,
                             Eigen::Ref<Eigen::MatrixXd> t) {
   using namespace mixed_precision_detail;
-  for (Eigen::Index l = 0; l < x.cols();) {
-    const Eigen::Index k = std::min<Eigen::Index>(4, x.cols() - l);
-    const double* xl = x.data() + l * x.outerStride();
-    double* tl = t.data() + l * t.outerStride();
-    switch (k) {
-      case 1: add_scaled_column_dots_k<1>(a, lda, rows, cols, scale, xl, x.outerStride(), tl, t.outerStride()); break;
-      case 2: add_scaled_column_dots_k<2>(a, lda, rows, cols, scale, xl, x.outerStride(), tl, t.outerStride()); break;
-      case 3: add_scaled_column_dots_k<3>(a, lda, rows, cols, scale, xl, x.outerStride(), tl, t.outerStride()); break;
-      default: add_scaled_column_dots_k<4>(a, lda, rows, cols, scale, xl, x.outerStride(), tl, t.outerStride()); break;
-    }
-    l += k;
-  }
+  in_groups_of_four(x.cols(), [&](auto k, Eigen::Index l) {
+    add_scaled_column_dots_k<decltype(k)::value>(a, lda, rows, cols, scale, x.data() + l * x.outerStride(),
+                                                x.outerStride(), t.data() + l * t.outerStride(), t.outerStride());
+  });
 }
 
 }  // namespace bemshape::bem
