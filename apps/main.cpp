@@ -17,6 +17,7 @@
 #include "apps/run_limits.hpp"
 #include "apps/thickness_command.hpp"
 #include "core/errors.hpp"
+#include "core/heap_retention.hpp"
 
 namespace {
 
@@ -29,6 +30,7 @@ int print_error(const std::string& message, int code) {
 
 int main(int argc, char** argv) {
   using namespace bemshape;
+  retain_freed_heap_memory();  // the solvers' temporaries are reused, not page-faulted again
   CLI::App app{
       "bemshape: local wall thickness, orientation and skeleton of solid parts given as closed "
       "triangle meshes (STL, OBJ, OFF, PLY). Lengths are in the units of the input file."};

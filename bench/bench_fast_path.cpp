@@ -36,6 +36,7 @@
 #include "bem/surface_gradient.hpp"
 #include "core/memory.hpp"
 #include "geometry/mesh_preparation.hpp"
+#include "core/heap_retention.hpp"
 #include "geometry/primitive_meshes.hpp"
 #include "tests/support/closed_forms.hpp"
 
@@ -376,6 +377,7 @@ int interior(int argc, char** argv) {
 }
 
 int main(int argc, char** argv) {
+  bemshape::retain_freed_heap_memory();  // as the bemshape executable does
   if (argc == 3 && std::string(argv[1]) == "entry-costs") return entry_costs(std::atof(argv[2]));
   if (argc >= 2 && std::string(argv[1]) == "interior") return interior(argc, argv);
   if (argc < 3) {
