@@ -11,27 +11,6 @@ namespace bemshape::bem {
 
 namespace {
 
-/// x in fixed point: q_r = round(x_r/s), s = max|x|/(2^{b−1} − 1), b the width of Int. Writes q
-/// (if not null) and s; returns the rounding error ‖x − s q‖ (0 for a zero column).
-template <class Int>
-double to_fixed_point(const Eigen::Ref<const Eigen::VectorXd>& x, Int* q, double& scale) {
-  const double largest = x.cwiseAbs().maxCoeff();
-  scale = largest / double(std::numeric_limits<Int>::max());
-  if (!(scale > 0.0)) {
-    if (q) std::fill(q, q + x.size(), Int(0));
-    scale = 0.0;
-    return 0.0;
-  }
-  double error2 = 0.0;
-  for (Eigen::Index r = 0; r < x.size(); ++r) {
-    const double level = std::nearbyint(x(r) / scale);
-    if (q) q[r] = static_cast<Int>(level);
-    const double e = x(r) - scale * level;
-    error2 += e * e;
-  }
-  return std::sqrt(error2);
-}
-
 /// Columns [first, first + count) of x in fixed point: q (x.rows() × count, column-major) and
 /// one scale per column.
 template <class Int>

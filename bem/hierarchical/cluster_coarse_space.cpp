@@ -8,7 +8,8 @@ template <class Scalar>
 ClusterCoarseSpace::ClusterCoarseSpace(const ClusterTree& tree, const HierarchicalMatrix& laplace,
                                        const YukawaNearField<Scalar>& yukawa,
                                        const Eigen::VectorXd& half_mass,
-                                       Eigen::Index cluster_size)
+                                       Eigen::Index cluster_size,
+                                       HierarchicalMatrix::GroupedColumns::Storage storage)
     : laplace_(laplace), n_(tree.root().size()), half_mass_(half_mass) {
   std::vector<int> coarse = tree.clusters_up_to(cluster_size);
   while (Eigen::Index(coarse.size()) > kMaxClusters)
@@ -46,7 +47,7 @@ ClusterCoarseSpace::ClusterCoarseSpace(const ClusterTree& tree, const Hierarchic
 
   // A_c = Pᵀ A P: the interior row from the H-matrix's sums, the exterior row from Y E,
   // then the mass terms ∓½ Eᵀ M E in the φ columns.
-  laplace_grouped_ = laplace.group_columns(cluster_of_, m);
+  laplace_grouped_ = laplace.group_columns(cluster_of_, m, storage);
   matrix_ = Eigen::MatrixXd::Zero(2 * m, 2 * m);
   matrix_.topRows(m) = laplace_grouped_.sums;
   for (Eigen::Index i = 0; i < n_; ++i) {
@@ -61,10 +62,12 @@ ClusterCoarseSpace::ClusterCoarseSpace(const ClusterTree& tree, const Hierarchic
 
 template ClusterCoarseSpace::ClusterCoarseSpace(const ClusterTree&, const HierarchicalMatrix&,
                                                 const YukawaNearField<double>&,
-                                                const Eigen::VectorXd&, Eigen::Index);
+                                                const Eigen::VectorXd&, Eigen::Index,
+                                                HierarchicalMatrix::GroupedColumns::Storage);
 template ClusterCoarseSpace::ClusterCoarseSpace(const ClusterTree&, const HierarchicalMatrix&,
                                                 const YukawaNearField<float>&,
-                                                const Eigen::VectorXd&, Eigen::Index);
+                                                const Eigen::VectorXd&, Eigen::Index,
+                                                HierarchicalMatrix::GroupedColumns::Storage);
 
 Eigen::MatrixXd ClusterCoarseSpace::coarse_solve(const Eigen::MatrixXd& r) const {
   const Eigen::Index m = clusters_;

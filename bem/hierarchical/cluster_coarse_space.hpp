@@ -24,9 +24,17 @@
 // Nothing here multiplies by the full A. A_c is summed from the stored operators (a
 // low-rank block U·Vᵀ contributes (EᵀU)(EᵀV)ᵀ, dense blocks and the sparse exterior matrix
 // their entries, the mass terms ±½|C_c|), and A P y uses A E kept per block
-// (HierarchicalMatrix::group_columns: U with EᵀV; the sparse Y E): it reads the U factors
-// but not V, about a third of a product by A. O(storage) work to build, 32·m² bytes for A_c
-// and its LU plus A E's small factors.
+// (HierarchicalMatrix::group_columns; the sparse Y E). A block meets one or a few clusters,
+// so its A E has a few columns where its U has tens: A P y reads a few bytes per row of a
+// block, not the factors (which took as long as the block preconditioner and 60 % of a product
+// by A on a 10⁵-face box, docs/benchmarks.md).
+//
+// Precision. By default A E is kept in 8-bit fixed point (each column within 1/254 of its
+// largest entry), the sums A_c exactly. The coarse correction then satisfies M⁻¹ A P = P only
+// to that accuracy: M is a slightly different fixed linear preconditioner, and GMRES
+// converges to the same solution. Measured on the 28596-face remeshed box: 23 iterations
+// with A E in 6, 8 or 16 bits or in double precision. O(storage) work to build, 32·m² bytes
+// for A_c and its LU, and about one byte per row of each block for A E.
 
 #include <cstdint>
 #include <vector>
@@ -55,10 +63,13 @@ class ClusterCoarseSpace {
   /// clusters are the largest with at most `cluster_size` panels, or with twice, four times …
   /// that many if there would be more than kMaxClusters. Scalar: double or float
   /// (instantiated for both).
+  /// `storage`: how A E is kept (exact: M⁻¹ A P = P to rounding).
   template <class Scalar>
   ClusterCoarseSpace(const ClusterTree& tree, const HierarchicalMatrix& laplace,
                      const YukawaNearField<Scalar>& yukawa, const Eigen::VectorXd& half_mass,
-                     Eigen::Index cluster_size = kDefaultClusterSize);
+                     Eigen::Index cluster_size = kDefaultClusterSize,
+                     HierarchicalMatrix::GroupedColumns::Storage storage =
+                         HierarchicalMatrix::GroupedColumns::Storage::fixed8);
 
   /// z = M⁻¹ r = P y + B (r − A P y), y = A_c⁻¹ Pᵀ r, for each column r = (r_φ, r_q) of
   /// `r` (2N × k, tree order); `blocks` is B.

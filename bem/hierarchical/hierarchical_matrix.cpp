@@ -276,19 +276,20 @@ std::vector<Eigen::MatrixXd> HierarchicalMatrix::diagonal_blocks(
 }
 
 std::uint64_t HierarchicalMatrix::GroupedColumns::bytes() const {
-  std::uint64_t total = 8 * std::uint64_t(sums.size()) + 8 * group.size();
-  for (const Eigen::MatrixXd& r : reduced) total += 8 * std::uint64_t(r.size());
+  std::uint64_t total = 8 * std::uint64_t(sums.size()) + 8 * group.size() + sizeof(Part) * parts.size();
+  for (const Part& p : parts)
+    total += 8 * std::uint64_t(p.values.size()) + p.fixed8.size() + 8 * p.scale.size();
   return total;
 }
 
-HierarchicalMatrix::GroupedColumns HierarchicalMatrix::group_columns(std::vector<Eigen::Index> group,
-                                                                     Eigen::Index groups) const {
+HierarchicalMatrix::GroupedColumns HierarchicalMatrix::group_columns(
+    std::vector<Eigen::Index> group, Eigen::Index groups, GroupedColumns::Storage storage) const {
   BEMSHAPE_ASSERT(outputs_ == 1 && rows_ == cols_ && Eigen::Index(group.size()) == rows_,
                   "grouped columns of a square operator, one group per element");
   GroupedColumns out;
   out.group = std::move(group);
   out.groups = groups;
-  out.reduced.resize(blocks_.size());
+  out.parts.resize(blocks_.size());
   const std::vector<Eigen::Index>& of = out.group;
   const int g = densities_;
   const int threads = omp_get_max_threads();
@@ -306,31 +307,44 @@ HierarchicalMatrix::GroupedColumns HierarchicalMatrix::group_columns(std::vector
       const Eigen::Index r0 = of[size_t(b.row_begin)], c0 = of[size_t(b.col_begin)];
       const Eigen::Index nr = of[size_t(b.row_end - 1)] - r0 + 1;
       const Eigen::Index nc = of[size_t(b.col_end - 1)] - c0 + 1;
-      Eigen::MatrixXd& reduced = out.reduced[k];
+      GroupedColumns::Part& part = out.parts[k];
+      Eigen::MatrixXd& values = part.values;
       if (!b.is_low_rank) {
         const Eigen::MatrixXd entries = dense_entries(b);
-        reduced = Eigen::MatrixXd::Zero(m, g * nc);  // D E
+        values = Eigen::MatrixXd::Zero(m, g * nc);  // D E
+        part.expanded = true;
         for (int d = 0; d < g; ++d)
           for (Eigen::Index j = 0; j < n; ++j)
-            reduced.col(d * nc + of[size_t(b.col_begin + j)] - c0) += entries.col(d * n + j);
+            values.col(d * nc + of[size_t(b.col_begin + j)] - c0) += entries.col(d * n + j);
         for (Eigen::Index i = 0; i < m; ++i)
           for (int d = 0; d < g; ++d)
             mine.row(of[size_t(b.row_begin + i)]).segment(d * groups + c0, nc) +=
-                reduced.row(i).segment(d * nc, nc);
-        continue;
+                values.row(i).segment(d * nc, nc);
+      } else {
+        const Eigen::MatrixXd u = b.single_precision ? b.factors.u_rows(0, m) : b.low_rank.U;
+        const Eigen::MatrixXd v = b.single_precision ? b.factors.v_rows(0, g * n) : b.low_rank.V;
+        const Eigen::Index rank = u.cols();
+        values = Eigen::MatrixXd::Zero(g * nc, rank);  // EᵀV
+        for (int d = 0; d < g; ++d)
+          for (Eigen::Index j = 0; j < n; ++j)
+            values.row(d * nc + of[size_t(b.col_begin + j)] - c0) += v.row(d * n + j);
+        left = Eigen::MatrixXd::Zero(nr, rank);  // EᵀU
+        for (Eigen::Index i = 0; i < m; ++i) left.row(of[size_t(b.row_begin + i)] - r0) += u.row(i);
+        for (int d = 0; d < g; ++d)
+          mine.block(r0, d * groups + c0, nr, nc).noalias() +=
+              left * values.middleRows(d * nc, nc).transpose();
+        if (g * nc <= rank) {  // A_d E = U (EᵀV)ᵀ holds no more numbers than U
+          values = (u * values.transpose()).eval();
+          part.expanded = true;
+        }
       }
-      const Eigen::MatrixXd u = b.single_precision ? b.factors.u_rows(0, m) : b.low_rank.U;
-      const Eigen::MatrixXd v = b.single_precision ? b.factors.v_rows(0, g * n) : b.low_rank.V;
-      const Eigen::Index rank = u.cols();
-      reduced = Eigen::MatrixXd::Zero(g * nc, rank);  // EᵀV
-      for (int d = 0; d < g; ++d)
-        for (Eigen::Index j = 0; j < n; ++j)
-          reduced.row(d * nc + of[size_t(b.col_begin + j)] - c0) += v.row(d * n + j);
-      left = Eigen::MatrixXd::Zero(nr, rank);  // EᵀU
-      for (Eigen::Index i = 0; i < m; ++i) left.row(of[size_t(b.row_begin + i)] - r0) += u.row(i);
-      for (int d = 0; d < g; ++d)
-        mine.block(r0, d * groups + c0, nr, nc).noalias() +=
-            left * reduced.middleRows(d * nc, nc).transpose();
+      if (part.expanded && storage == GroupedColumns::Storage::fixed8) {
+        part.fixed8.resize(std::size_t(values.size()));
+        part.scale.resize(std::size_t(values.cols()));
+        for (Eigen::Index c = 0; c < values.cols(); ++c)
+          to_fixed_point(values.col(c), part.fixed8.data() + c * m, part.scale[std::size_t(c)]);
+        values = Eigen::MatrixXd();
+      }
     }
   }
   out.sums = Eigen::MatrixXd::Zero(groups, g * groups);
@@ -342,7 +356,7 @@ void HierarchicalMatrix::multiply_add_grouped(const GroupedColumns& grouped,
                                               const Eigen::Ref<const Eigen::MatrixXd>& x,
                                               Eigen::Ref<Eigen::MatrixXd> y) const {
   const Eigen::Index vectors = x.cols() / densities_;
-  BEMSHAPE_ASSERT(grouped.reduced.size() == blocks_.size() && x.rows() == grouped.groups &&
+  BEMSHAPE_ASSERT(grouped.parts.size() == blocks_.size() && x.rows() == grouped.groups &&
                       x.cols() == vectors * densities_ && y.rows() == rows_ && y.cols() == vectors,
                   "grouped H-matrix product: x must be groups × densities·k and y #rows × k");
   const int threads = omp_get_max_threads();
@@ -351,7 +365,7 @@ void HierarchicalMatrix::multiply_add_grouped(const GroupedColumns& grouped,
   {
     Eigen::MatrixXd& mine = partial[static_cast<size_t>(omp_get_thread_num())];
     mine = Eigen::MatrixXd::Zero(rows_, y.cols());
-    Eigen::MatrixXd xs, product;
+    Eigen::MatrixXd xs;
 #pragma omp for schedule(static, 1)
     for (std::size_t k = 0; k < blocks_.size(); ++k) {
       const Block& b = blocks_[k];
@@ -362,17 +376,19 @@ void HierarchicalMatrix::multiply_add_grouped(const GroupedColumns& grouped,
       for (Eigen::Index j = 0; j < vectors; ++j)
         for (int d = 0; d < densities_; ++d)
           xs.col(j).segment(d * nc, nc) = x.col(j * densities_ + d).segment(c0, nc);
-      const Eigen::MatrixXd& reduced = grouped.reduced[k];
-      if (!b.is_low_rank) {
-        mine.middleRows(b.row_begin, m).noalias() += reduced * xs;
-        continue;
+      const GroupedColumns::Part& part = grouped.parts[k];
+      auto rows = mine.middleRows(b.row_begin, m);
+      if (part.expanded && !part.fixed8.empty()) {
+        add_scaled_columns(part.fixed8.data(), m, m, densities_ * nc, part.scale.data(), xs, rows);
+      } else if (part.expanded) {
+        rows.noalias() += part.values * xs;
+      } else {
+        const Eigen::MatrixXd t = part.values.transpose() * xs;  // rank × k
+        if (b.single_precision)
+          b.factors.add_u_product(t, rows);
+        else
+          rows.noalias() += b.low_rank.U * t;
       }
-      const Eigen::MatrixXd t = reduced.transpose() * xs;  // rank × k
-      if (!b.single_precision) {
-        mine.middleRows(b.row_begin, m).noalias() += b.low_rank.U * t;
-        continue;
-      }
-      b.factors.add_u_product(t, mine.middleRows(b.row_begin, m));
     }
   }
   for (const Eigen::MatrixXd& p : partial) y += p;

@@ -112,23 +112,36 @@ class HierarchicalMatrix {
 
   /// The operator on densities that are constant on groups of elements: with E(j, a) = 1 if
   /// group[j] = a (groups nondecreasing in tree order, e.g. clusters of the tree), A_d E per
-  /// block — a low-rank block keeps its U and gets EᵀV, a dense block D gets D E — and the
-  /// Galerkin sums EᵀA_d E. O(storage) work once; products cost a fraction of multiply_add's.
-  /// What a coarse-space correction needs (bem/hierarchical/cluster_coarse_space.hpp).
+  /// block and the Galerkin sums EᵀA_d E. A block meeting few groups keeps A_d E itself,
+  /// |τ| × g·|groups met| (a dense block D: D E; a low-rank one: U (EᵀV)ᵀ); a low-rank block
+  /// meeting more groups than its rank keeps its U and gets EᵀV. Most blocks meet one or two
+  /// groups of the tree's size (hundreds of elements), so a product reads a few numbers per
+  /// row of a block where U has tens. O(storage) work once. What a coarse-space correction
+  /// needs (bem/hierarchical/cluster_coarse_space.hpp).
   struct GroupedColumns {
+    /// How the A_d E kept per block are stored: in double precision, or in 8-bit fixed point
+    /// with one scale per column (to_fixed_point: each entry within max|column|/254; the sums
+    /// EᵀA_d E are exact either way).
+    enum class Storage { exact, fixed8 };
+    struct Part {
+      bool expanded = false;     ///< A_d E kept (else EᵀV, multiplied by the block's U)
+      Eigen::MatrixXd values;    ///< A_d E (expanded, exact) or EᵀV (g·|groups met| × rank)
+      std::vector<std::int8_t> fixed8;  ///< A_d E column-major (expanded, fixed8)
+      std::vector<double> scale;        ///< fixed8's column scales
+    };
     std::vector<Eigen::Index> group;  ///< group of each tree position
     Eigen::Index groups = 0;
-    /// Per block (same order as the blocks): EᵀV (g·|groups met| × rank) for a low-rank
-    /// block, D E (|τ| × g·|groups met|) for a dense one.
-    std::vector<Eigen::MatrixXd> reduced;
+    std::vector<Part> parts;  ///< per block, same order as the blocks
     /// sums(a, d·groups + b) = Σ_{group[i] = a, group[j] = b} A_d(i, j) = (Eᵀ A_d E)(a, b).
     Eigen::MatrixXd sums;
     std::uint64_t bytes() const;
   };
-  GroupedColumns group_columns(std::vector<Eigen::Index> group, Eigen::Index groups) const;
+  GroupedColumns group_columns(std::vector<Eigen::Index> group, Eigen::Index groups,
+                               GroupedColumns::Storage storage) const;
 
   /// y += A (E x) for k vectors of group values at once: x is groups × g·k (column j·g + d =
-  /// density d of vector j), y is #rows × k. Reads U of the low-rank blocks, none of V.
+  /// density d of vector j), y is #rows × k. Reads U of the low-rank blocks kept factored,
+  /// none of V.
   void multiply_add_grouped(const GroupedColumns& grouped, const Eigen::Ref<const Eigen::MatrixXd>& x,
                             Eigen::Ref<Eigen::MatrixXd> y) const;
 

@@ -1,7 +1,7 @@
 #pragma once
 // Products of a matrix stored narrow — single precision, or 16-/8-bit fixed point with one
-// scale per column — with a few double-precision vectors, in double arithmetic and without
-// a widened copy of the matrix:
+// scale per column (to_fixed_point) — with a few double-precision vectors, in double
+// arithmetic and without a widened copy of the matrix:
 //   add_scaled_columns:     Y(:, l) += Σ_c s_c·C(c, l)·A(:, c)      (Y += A S C)
 //   add_scaled_column_dots: T(c, l) += s_c·Σ_r A(r, c)·X(r, l)      (T += S Aᵀ X)
 // for A (rows × cols, column-major with leading dimension lda), S = diag(s) (all ones without
@@ -15,7 +15,9 @@
 // every thread count.
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
+#include <limits>
 #include <type_traits>
 
 #include <Eigen/Core>
@@ -116,6 +118,27 @@ void in_groups_of_four(Eigen::Index columns, Run&& run) {
 }
 
 }  // namespace mixed_precision_detail
+
+/// x in fixed point: q_r = round(x_r/s), s = max|x|/(2^{b−1} − 1), b the width of Int. Writes q
+/// (if not null) and s; returns the rounding error ‖x − s q‖ (0 for a zero column).
+template <class Int>
+double to_fixed_point(const Eigen::Ref<const Eigen::VectorXd>& x, Int* q, double& scale) {
+  const double largest = x.cwiseAbs().maxCoeff();
+  scale = largest / double(std::numeric_limits<Int>::max());
+  if (!(scale > 0.0)) {
+    if (q) std::fill(q, q + x.size(), Int(0));
+    scale = 0.0;
+    return 0.0;
+  }
+  double error2 = 0.0;
+  for (Eigen::Index r = 0; r < x.size(); ++r) {
+    const double level = std::nearbyint(x(r) / scale);
+    if (q) q[r] = static_cast<Int>(level);
+    const double e = x(r) - scale * level;
+    error2 += e * e;
+  }
+  return std::sqrt(error2);
+}
 
 /// Y += A·diag(s)·C: A is rows × cols at `a` (column-major, leading dimension lda; float,
 /// int16_t or int8_t), s the columns' scales (nullptr: all ones), C cols × k, Y rows × k.
