@@ -18,6 +18,7 @@
 #include "apps/thickness_command.hpp"
 #include "core/errors.hpp"
 #include "core/heap_retention.hpp"
+#include "core/huge_pages.hpp"
 
 namespace {
 
@@ -30,6 +31,7 @@ int print_error(const std::string& message, int code) {
 
 int main(int argc, char** argv) {
   using namespace bemshape;
+  restart_with_heap_huge_pages(argv);  // once, before anything is allocated: 2 MB heap pages
   retain_freed_heap_memory();  // the solvers' temporaries are reused, not page-faulted again
   CLI::App app{
       "bemshape: local wall thickness, orientation and skeleton of solid parts given as closed "

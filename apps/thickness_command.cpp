@@ -26,6 +26,7 @@
 #include "apps/surface_features.hpp"
 #include "apps/thickness_statistics.hpp"
 #include "core/errors.hpp"
+#include "core/huge_pages.hpp"
 #include "core/memory.hpp"
 #include "features/thickness.hpp"
 
@@ -237,7 +238,7 @@ nlohmann::json report_json(const ThicknessOptions& options, double h0, const Bou
         {"solve_stages", solve_stages},
         {"operator_parts_mb", operator_parts}}},
       {"timing", timing},
-      {"memory", {{"peak_mb", peak_mb}}}};
+      {"memory", {{"peak_mb", peak_mb}, {"heap_huge_pages", heap_uses_huge_pages()}}}};
 }
 
 /// Regions listed in the printed report; the JSON report lists all of them.

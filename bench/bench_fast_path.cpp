@@ -37,6 +37,7 @@
 #include "core/memory.hpp"
 #include "geometry/mesh_preparation.hpp"
 #include "core/heap_retention.hpp"
+#include "core/huge_pages.hpp"
 #include "geometry/primitive_meshes.hpp"
 #include "tests/support/closed_forms.hpp"
 
@@ -377,7 +378,8 @@ int interior(int argc, char** argv) {
 }
 
 int main(int argc, char** argv) {
-  bemshape::retain_freed_heap_memory();  // as the bemshape executable does
+  bemshape::restart_with_heap_huge_pages(argv);  // as the bemshape executable does
+  bemshape::retain_freed_heap_memory();
   if (argc == 3 && std::string(argv[1]) == "entry-costs") return entry_costs(std::atof(argv[2]));
   if (argc >= 2 && std::string(argv[1]) == "interior") return interior(argc, argv);
   if (argc < 3) {

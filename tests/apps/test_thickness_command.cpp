@@ -9,6 +9,7 @@
 
 #include <Eigen/Geometry>
 
+#include "core/huge_pages.hpp"
 #include "geometry/primitive_meshes.hpp"
 #include "tests/apps/bemshape_runner.hpp"
 #include "tests/apps/output/file_readers.hpp"
@@ -478,4 +479,34 @@ TEST_CASE("usage errors are one line on stderr, exit 2, before any work and no f
   r = run_bemshape("thickness '" + data + "/bad/open_box.stl' --h0 1");
   CHECK(r.exit_code == 2);
   CHECK_THAT(r.err, Catch::Contains("open boundary edges"));
+}
+
+TEST_CASE("heap huge pages: requested at start where the kernel gives them only on request") {
+  // core/huge_pages.hpp: bemshape restarts itself once with glibc.malloc.hugetlb=1 when the
+  // kernel's THP mode is "madvise", and leaves a user's own setting alone.
+  const std::string mode = transparent_huge_page_mode();
+#if defined(__linux__) && defined(__GLIBC__) && (__GLIBC__ > 2 || __GLIBC_MINOR__ >= 35)
+  const bool restarts = mode == "madvise";
+#else
+  const bool restarts = false;
+#endif
+  const std::string mesh = ball_file(0.2, "ball_pages.stl");
+  const std::string json = scratch("ball_pages.json");
+  const auto huge_pages_reported = [&] {
+    const Run r = run_bemshape("thickness '" + mesh + "' --h0 0.3 --report '" + json + "' --quiet");
+    CAPTURE(r.err);
+    REQUIRE(r.exit_code == 0);
+    return read_json(json)["memory"]["heap_huge_pages"].get<bool>();
+  };
+  CAPTURE(mode);
+  const char* before = std::getenv("GLIBC_TUNABLES");
+  const std::string saved = before ? before : "";
+  ::unsetenv("GLIBC_TUNABLES");
+  CHECK(huge_pages_reported() == (mode == "always" || restarts));
+  // The user's choice wins, and other tunables are kept through the restart.
+  ::setenv("GLIBC_TUNABLES", "glibc.malloc.hugetlb=0", 1);
+  CHECK(huge_pages_reported() == (mode == "always"));
+  ::setenv("GLIBC_TUNABLES", "glibc.malloc.mxfast=0", 1);
+  CHECK(huge_pages_reported() == (mode == "always" || restarts));
+  if (before) ::setenv("GLIBC_TUNABLES", saved.c_str(), 1); else ::unsetenv("GLIBC_TUNABLES");
 }
