@@ -10,15 +10,22 @@
 // (adaptive_precision_factors.hpp) and the single-precision near-field blocks
 // (hierarchical_matrix.cpp) go through these two functions.
 //
-// The sums are formed in a fixed order (column by column; each dot product in 8 partial sums
-// over rows r ≡ j mod 8, added at the end), so a product is the same on every run and for
-// every thread count.
+// The sums are formed in a fixed order (each output row over the columns in turn; each dot
+// product in one partial sum per vector lane, added at the end), so a product is the same on
+// every run and for every thread count (for one build: the lanes depend on the target's
+// vector width).
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <limits>
 #include <type_traits>
+#include <vector>
+
+#if defined(__AVX2__)
+#include <immintrin.h>
+#endif
 
 #include <Eigen/Core>
 
@@ -26,23 +33,57 @@ namespace bemshape::bem {
 
 namespace mixed_precision_detail {
 
-/// Rows of Y updated per pass over A's columns: the k output segments stay in the first-level
-/// cache while every column adds to them.
-constexpr Eigen::Index kRowBlock = 256;
-
-/// Eight doubles, one vector register with AVX-512 (two with AVX2): the compiler's generic
-/// vectors, so that 8 stored entries are widened and multiplied at once whatever the row
-/// count (auto-vectorised loops over short columns fall back to scalar code).
+/// Doubles per vector register of the target (8 with AVX-512, 4 with AVX2, else 2): the
+/// compiler's generic vectors, so that the stored entries are widened and multiplied a
+/// register at a time whatever the row count (auto-vectorised loops over short columns fall
+/// back to scalar code). Wider generic vectors than the registers would be kept in memory.
+#if defined(__AVX512F__)
 constexpr int kLanes = 8;
+#elif defined(__AVX2__)
+constexpr int kLanes = 4;
+#else
+constexpr int kLanes = 2;
+#endif
 typedef double Lanes __attribute__((vector_size(kLanes * sizeof(double))));
 
-/// Entries r … r + 7 of a stored column, widened to double.
+/// Entries r … r + kLanes − 1 of a stored column, widened to double. Integers are widened to
+/// 32 bits by the instruction for it: GCC converts 8- and 16-bit vectors one lane at a time
+/// (measured 3–5 times slower than the single-precision columns).
 template <class T>
 inline Lanes widen(const T* from) {
-  typedef T Stored __attribute__((vector_size(kLanes * sizeof(T))));
-  Stored v;
-  std::memcpy(&v, from, sizeof v);
-  return __builtin_convertvector(v, Lanes);
+  if constexpr (!std::is_integral_v<T>) {
+    typedef T Stored __attribute__((vector_size(kLanes * sizeof(T))));
+    Stored v;
+    std::memcpy(&v, from, sizeof v);
+    return __builtin_convertvector(v, Lanes);
+  } else {
+    static_assert(sizeof(T) == 1 || sizeof(T) == 2, "8- or 16-bit fixed point");
+#if defined(__AVX512F__)
+    const __m256i wide = sizeof(T) == 1
+                             ? _mm256_cvtepi8_epi32(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(from)))
+                             : _mm256_cvtepi16_epi32(_mm_loadu_si128(reinterpret_cast<const __m128i*>(from)));
+    // One instruction (the generic conversion takes two halves); the form with a zero source
+    // because the plain one trips GCC 12's -Wmaybe-uninitialized.
+    const __m512d all = _mm512_mask_cvtepi32_pd(_mm512_setzero_pd(), __mmask8(0xFF), wide);
+    Lanes out;
+    std::memcpy(&out, &all, sizeof out);
+    return out;
+#else
+    typedef std::int32_t Wide __attribute__((vector_size(kLanes * sizeof(std::int32_t))));
+    Wide w;
+#if defined(__AVX2__)
+    std::int32_t four;  // 4 entries of 8 bits
+    std::memcpy(&four, from, sizeof four);
+    const __m128i wide = sizeof(T) == 1
+                             ? _mm_cvtepi8_epi32(_mm_cvtsi32_si128(four))
+                             : _mm_cvtepi16_epi32(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(from)));
+    std::memcpy(&w, &wide, sizeof w);
+#else
+    for (int i = 0; i < kLanes; ++i) w[i] = from[i];
+#endif
+    return __builtin_convertvector(w, Lanes);
+#endif
+  }
 }
 
 inline Lanes load(const double* from) {
@@ -53,52 +94,88 @@ inline Lanes load(const double* from) {
 
 inline void store(double* to, Lanes v) { std::memcpy(to, &v, sizeof v); }
 
+/// Y += A·F with F(c, l) = s_c·C(c, l) formed first. Rows go in chunks of kChunk·kLanes whose
+/// K·kChunk sums stay in registers while every column adds to them; Y is read and written once
+/// per chunk. The last rows % kLanes rows are summed in scalars.
 template <int K, class T>
 void add_scaled_columns_k(const T* a, Eigen::Index lda, Eigen::Index rows, Eigen::Index cols,
                           const double* scale, const double* coefficients, Eigen::Index ldc,
                           double* y, Eigen::Index ldy) {
-  for (Eigen::Index r0 = 0; r0 < rows; r0 += kRowBlock) {
-    const Eigen::Index length = std::min(kRowBlock, rows - r0);
-    const Eigen::Index body = length - length % kLanes;
+  // K·kChunk sums and kChunk widened entries in registers: 32 of them with AVX-512, 16 else.
+  constexpr int kChunk = kLanes == 8 ? 4 : kLanes == 4 ? 2 : 1;
+  thread_local std::vector<double> factors;
+  factors.resize(static_cast<std::size_t>(cols * K));
+  double* f = factors.data();
+  for (Eigen::Index c = 0; c < cols; ++c) {
+    const double s = scale ? scale[c] : 1.0;
+    for (int l = 0; l < K; ++l) f[c * K + l] = s * coefficients[c + l * ldc];
+  }
+  const auto add_rows = [&]<int R>(Eigen::Index r0, std::integral_constant<int, R>) {
+    Lanes sum[K][R];
+    for (int l = 0; l < K; ++l)
+      for (int i = 0; i < R; ++i) sum[l][i] = Lanes{};
     for (Eigen::Index c = 0; c < cols; ++c) {
       const T* column = a + c * lda + r0;
-      const double s = scale ? scale[c] : 1.0;
-      double factor[K];
-      for (int l = 0; l < K; ++l) factor[l] = s * coefficients[c + l * ldc];
-      for (Eigen::Index r = 0; r < body; r += kLanes) {
-        const Lanes v = widen(column + r);
-        for (int l = 0; l < K; ++l) {
-          double* out = y + l * ldy + r0 + r;
-          store(out, load(out) + factor[l] * v);
-        }
-      }
-      for (Eigen::Index r = body; r < length; ++r)
-        for (int l = 0; l < K; ++l) y[l * ldy + r0 + r] += factor[l] * double(column[r]);
+      Lanes v[R];
+      for (int i = 0; i < R; ++i) v[i] = widen(column + i * kLanes);
+      for (int l = 0; l < K; ++l)
+        for (int i = 0; i < R; ++i) sum[l][i] += f[c * K + l] * v[i];
     }
-  }
+    for (int l = 0; l < K; ++l)
+      for (int i = 0; i < R; ++i) {
+        double* out = y + l * ldy + r0 + i * kLanes;
+        store(out, load(out) + sum[l][i]);
+      }
+  };
+  Eigen::Index r0 = 0;
+  for (; r0 + kChunk * kLanes <= rows; r0 += kChunk * kLanes)
+    add_rows(r0, std::integral_constant<int, kChunk>{});
+  for (; r0 + kLanes <= rows; r0 += kLanes) add_rows(r0, std::integral_constant<int, 1>{});
+  const Eigen::Index tail = rows - r0;
+  if (tail == 0) return;
+  double sum[kLanes][K] = {};
+  for (Eigen::Index c = 0; c < cols; ++c)
+    for (Eigen::Index r = 0; r < tail; ++r)
+      for (int l = 0; l < K; ++l) sum[r][l] += f[c * K + l] * double(a[c * lda + r0 + r]);
+  for (Eigen::Index r = 0; r < tail; ++r)
+    for (int l = 0; l < K; ++l) y[l * ldy + r0 + r] += sum[r][l];
 }
 
+/// T += S·Aᵀ·X, kGroup columns at a time so that they share the loads of X; each dot product
+/// in kLanes partial sums over rows r ≡ j mod kLanes (then the last rows % kLanes rows),
+/// added at the end.
 template <int K, class T>
 void add_scaled_column_dots_k(const T* a, Eigen::Index lda, Eigen::Index rows, Eigen::Index cols,
                               const double* scale, const double* x, Eigen::Index ldx, double* t,
                               Eigen::Index ldt) {
+  constexpr int kGroup = 4;
   const Eigen::Index body = rows - rows % kLanes;
-  for (Eigen::Index c = 0; c < cols; ++c) {
-    const T* column = a + c * lda;
-    Lanes partial[K];
-    for (int l = 0; l < K; ++l) partial[l] = Lanes{};
+  const auto add_columns = [&]<int G>(Eigen::Index c0, std::integral_constant<int, G>) {
+    Lanes partial[G][K];
+    for (int j = 0; j < G; ++j)
+      for (int l = 0; l < K; ++l) partial[j][l] = Lanes{};
     for (Eigen::Index r = 0; r < body; r += kLanes) {
-      const Lanes v = widen(column + r);
-      for (int l = 0; l < K; ++l) partial[l] += v * load(x + l * ldx + r);
+      Lanes xv[K];
+      for (int l = 0; l < K; ++l) xv[l] = load(x + l * ldx + r);
+      for (int j = 0; j < G; ++j) {
+        const Lanes v = widen(a + (c0 + j) * lda + r);
+        for (int l = 0; l < K; ++l) partial[j][l] += v * xv[l];
+      }
     }
-    const double s = scale ? scale[c] : 1.0;
-    for (int l = 0; l < K; ++l) {
-      double sum = 0.0;
-      for (Eigen::Index r = body; r < rows; ++r) sum += double(column[r]) * x[l * ldx + r];
-      for (int j = 0; j < kLanes; ++j) sum += partial[l][j];
-      t[c + l * ldt] += s * sum;
+    for (int j = 0; j < G; ++j) {
+      const T* column = a + (c0 + j) * lda;
+      const double s = scale ? scale[c0 + j] : 1.0;
+      for (int l = 0; l < K; ++l) {
+        double sum = 0.0;
+        for (Eigen::Index r = body; r < rows; ++r) sum += double(column[r]) * x[l * ldx + r];
+        for (int i = 0; i < kLanes; ++i) sum += partial[j][l][i];
+        t[c0 + j + l * ldt] += s * sum;
+      }
     }
-  }
+  };
+  Eigen::Index c0 = 0;
+  for (; c0 + kGroup <= cols; c0 += kGroup) add_columns(c0, std::integral_constant<int, kGroup>{});
+  for (; c0 < cols; ++c0) add_columns(c0, std::integral_constant<int, 1>{});
 }
 
 /// Calls run(K, l) for the right-hand sides l … l + K − 1, four at a time (K a compile-time
