@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include <Eigen/QR>
@@ -126,22 +127,29 @@ namespace {
 /// Below this fraction of ‖B‖ the columns of C are B's rounding: nothing to resolve.
 constexpr double kRoundingLevel = 1e-15;
 
-/// Eigenvalues of a Gram matrix below this fraction of its largest are resolved again, on
-/// their own columns: rounding of CᵀC (relative to its largest eigenvalue) blurs their
-/// eigenvectors.
-constexpr double kResolvedEigenvalues = 1e-6;
+/// Which eigenvalues of a Gram matrix are resolved again, on their own columns: rounding of
+/// CᵀC, about u·λ_max (u = 2⁻⁵³), turns each eigenvector by about u·λ_max/gap, which moves
+/// about u²·λ_max²/λ of squared norm between a column of eigenvalue λ and the columns of
+/// eigenvalues near rounding. That is at most 1 % of what the truncation may drop, ε²·λ_max,
+/// for λ ≥ 100·u²/ε²·λ_max: those columns' norms are right, the ones below are rotated again
+/// (their rounding is relative to their own largest, so the same bound holds at every level).
+/// 1.2e−14 at ε = 1e−8, 1.2e−6 at ε = 1e−12.
+double resolved_eigenvalues(double epsilon) {
+  constexpr double u = 0.5 * std::numeric_limits<double>::epsilon();
+  return std::min(0.5, 100.0 * u * u / (epsilon * epsilon));
+}
 
 /// Rotates c ← c X, w ← w X (X orthogonal) until the columns of c are orthogonal: then c's
 /// columns are σᵢ times B's left singular vectors and w's the right ones, for c = B w on
 /// entry. One rotation is the eigenvectors X of the Gram matrix cᵀc, five times cheaper
 /// than an SVD of c for 20–30 columns. The eigenvectors are accurate only for eigenvalues
 /// well above the rounding of cᵀc, about 1e−16 of the largest, that is for singular values
-/// above 1e−8 of the largest; the columns below kResolvedEigenvalues are rotated again by
-/// the eigenvectors of their own Gram matrix, whose rounding is relative to their own size
+/// above 1e−8 of the largest; the columns below `resolved` times the largest eigenvalue
+/// (resolved_eigenvalues) are rotated again by the eigenvectors of their own Gram matrix, whose rounding is relative to their own size
 /// (deflation), until what is left is within `negligible2` (squared norm, nothing that
 /// could be kept) or a single column.
 void orthogonalise_columns(Eigen::Ref<Eigen::MatrixXd> c, Eigen::Ref<Eigen::MatrixXd> w,
-                           double negligible2) {
+                           double negligible2, double resolved) {
   const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> gram(c.transpose() * c);
   const Eigen::MatrixXd& x = gram.eigenvectors();  // columns by ascending eigenvalue
   const Eigen::MatrixXd rotated_c = c * x, rotated_w = w * x;
@@ -150,10 +158,10 @@ void orthogonalise_columns(Eigen::Ref<Eigen::MatrixXd> c, Eigen::Ref<Eigen::Matr
   const Eigen::VectorXd& lambda = gram.eigenvalues();
   const double largest = lambda(lambda.size() - 1);
   Eigen::Index small = 0;
-  while (small < lambda.size() && lambda(small) < kResolvedEigenvalues * largest) ++small;
+  while (small < lambda.size() && lambda(small) < resolved * largest) ++small;
   if (small < 2 || small == lambda.size()) return;
   if (c.leftCols(small).squaredNorm() <= negligible2) return;
-  orthogonalise_columns(c.leftCols(small), w.leftCols(small), negligible2);
+  orthogonalise_columns(c.leftCols(small), w.leftCols(small), negligible2, resolved);
 }
 
 }  // namespace
@@ -171,7 +179,8 @@ LowRankBlock recompress(const LowRankBlock& block, double epsilon) {
   Eigen::MatrixXd w = Eigen::MatrixXd::Identity(kv, kv);
   const Eigen::VectorXd all2 = c.colwise().squaredNorm().transpose();
   const double allowed2 = epsilon * epsilon * all2.sum();
-  orthogonalise_columns(c, w, std::max(allowed2, kRoundingLevel * kRoundingLevel * all2.sum()));
+  orthogonalise_columns(c, w, std::max(allowed2, kRoundingLevel * kRoundingLevel * all2.sum()),
+                        resolved_eigenvalues(epsilon));
   const Eigen::VectorXd norms2 = c.colwise().squaredNorm().transpose();
   std::vector<Eigen::Index> order(static_cast<std::size_t>(c.cols()));
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = Eigen::Index(i);
