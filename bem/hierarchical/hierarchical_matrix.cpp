@@ -15,6 +15,20 @@
 #include "core/errors.hpp"
 
 namespace bemshape::bem {
+namespace {
+
+/// Admissible blocks of at most this many entries are filled whole before the cross
+/// approximation, which then reads its rows and columns from memory. Filling one row or one
+/// column at a time costs a call per row or column (about 1–2 µs on the blocks of 16–64
+/// panels), and ACA asks for some 50–75 of them on those blocks, where the ranks are 60–80 %
+/// of the block's size; filling the whole block costs a third to a half of that. A block
+/// whose approximation does not pay is then stored from the same entries instead of being
+/// computed a second time. Measured per block class on the 28596-face hollow box
+/// (docs/benchmarks.md, ninth session): at 96–128 panels the whole block already costs as
+/// much as ACA's rows and columns, hence 64 × 128 (64 panels against 64, two densities).
+constexpr Eigen::Index kDenseFirstEntries = 64 * 128;
+
+}  // namespace
 
 HierarchicalMatrix::HierarchicalMatrix(const ClusterTree& tree,
                                        const OperatorBlockGenerator& generator,
@@ -75,16 +89,29 @@ HierarchicalMatrix::HierarchicalMatrix(const ClusterTree& row_tree, const Cluste
                             options.single_precision_near_field;
         const Eigen::Index max_rank =
             narrow ? std::min(std::min(o * m, g * n), (3 * equal_entries) / 2) : equal_entries;
+        // Small blocks are filled whole first (dense_first_entries) and ACA reads them.
+        if (o * m * g * n <= kDenseFirstEntries) {
+          b.dense.resize(o * m, g * n);
+          generator.fill(b.row_begin, b.row_end, b.col_begin, b.col_end, b.dense);
+        }
         Eigen::MatrixXd column_block(o * m, g);
         Eigen::MatrixXd row_block(o, g * n);
         auto aca = adaptive_cross_approximation(
             o * m, g * n,
             [&](Eigen::Index i, Eigen::Ref<Eigen::VectorXd> row) {
+              if (b.dense.size() > 0) {
+                row = b.dense.row(i).transpose();
+                return;
+              }
               const Eigen::Index r = i % m;
               generator.fill(b.row_begin + r, b.row_begin + r + 1, b.col_begin, b.col_end, row_block);
               row = row_block.row(i / m).transpose();
             },
             [&](Eigen::Index j, Eigen::Ref<Eigen::VectorXd> column) {
+              if (b.dense.size() > 0) {
+                column = b.dense.col(j);
+                return;
+              }
               const Eigen::Index c = j % n, d = j / n;
               generator.fill(b.row_begin, b.row_end, b.col_begin + c, b.col_begin + c + 1,
                              column_block);
@@ -104,14 +131,18 @@ HierarchicalMatrix::HierarchicalMatrix(const ClusterTree& row_tree, const Cluste
             stored = true;
           }
         }
-        if (!stored) {
+        if (stored) {
+          b.dense = Eigen::MatrixXd();
+        } else {
           b.is_low_rank = false;
           b.single_precision = false;
         }
       }
       if (!stored) {
-        b.dense.resize(o * m, g * n);
-        generator.fill(b.row_begin, b.row_end, b.col_begin, b.col_end, b.dense);
+        if (b.dense.size() == 0) {  // not filled above
+          b.dense.resize(o * m, g * n);
+          generator.fill(b.row_begin, b.row_end, b.col_begin, b.col_end, b.dense);
+        }
         if (options.single_precision_near_field) {
           b.dense_single = b.dense.cast<float>();
           b.dense = Eigen::MatrixXd();
