@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <vector>
 
+#include <Eigen/Cholesky>
 #include <Eigen/QR>
 #include <Eigen/Eigenvalues>
 
@@ -164,18 +166,97 @@ void orthogonalise_columns(Eigen::Ref<Eigen::MatrixXd> c, Eigen::Ref<Eigen::Matr
   orthogonalise_columns(c.leftCols(small), w.leftCols(small), negligible2, resolved);
 }
 
+/// An orthonormal basis Q of the columns of a factor F (n×k): F = Q R with R upper
+/// triangular, and products Q X.
+class ColumnBasis {
+ public:
+  /// Q and R by Householder reflections (R: min(k, n) × k). Always applies.
+  static ColumnBasis householder(const Eigen::MatrixXd& f) {
+    ColumnBasis b;
+    b.qr_.compute(f);
+    b.r_ = b.qr_.matrixQR().topRows(std::min(f.cols(), f.rows())).template triangularView<Eigen::Upper>();
+    return b;
+  }
+
+  /// Q = F R⁻¹ and R from the Cholesky factor of the Gram matrix FᵀF, the columns scaled to
+  /// unit norm first: R = R̂ D with D = diag(‖f_l‖) and R̂ᵀR̂ = D⁻¹ FᵀF D⁻¹. Q is then
+  /// orthonormal to about u·κ² and Q X = F (R⁻¹ X) carries rounding of about u·κ‖X‖, κ the
+  /// condition number of the scaled columns; R̂'s diagonal, the distance of each unit
+  /// column from the span of those before it, bounds 1/κ from above to within a factor
+  /// of k or so. Applies when every diagonal entry is at least `min_pivot` (and F has no
+  /// more columns than rows, no zero column); nothing otherwise.
+  static std::optional<ColumnBasis> gram(const Eigen::MatrixXd& f, double min_pivot) {
+    const Eigen::Index k = f.cols();
+    if (k > f.rows()) return std::nullopt;
+    const Eigen::VectorXd norms = f.colwise().norm().transpose();
+    if (!(norms.minCoeff() > 0.0)) return std::nullopt;
+    const Eigen::VectorXd inverse = norms.cwiseInverse();
+    Eigen::MatrixXd gram = f.transpose() * f;
+    gram = inverse.asDiagonal() * gram * inverse.asDiagonal();
+    const Eigen::LLT<Eigen::MatrixXd> cholesky(gram);
+    if (cholesky.info() != Eigen::Success) return std::nullopt;
+    Eigen::MatrixXd r_scaled = cholesky.matrixU();
+    if (!(r_scaled.diagonal().minCoeff() >= min_pivot)) return std::nullopt;
+    ColumnBasis b;
+    b.f_ = &f;
+    b.r_ = r_scaled * norms.asDiagonal();
+    return b;
+  }
+
+  const Eigen::MatrixXd& r() const { return r_; }
+
+  /// Q X for X of r().rows() rows.
+  Eigen::MatrixXd times(const Eigen::MatrixXd& x) const {
+    if (f_ != nullptr)
+      return *f_ * r_.template triangularView<Eigen::Upper>().solve(x);
+    Eigen::MatrixXd out = Eigen::MatrixXd::Zero(qr_.rows(), x.cols());
+    out.topRows(x.rows()) = x;
+    out.applyOnTheLeft(qr_.householderQ());  // on X's columns only: forming Q costs k/r more
+    return out;
+  }
+
+ private:
+  Eigen::HouseholderQR<Eigen::MatrixXd> qr_;
+  const Eigen::MatrixXd* f_ = nullptr;  ///< F, for the Gram basis
+  Eigen::MatrixXd r_;
+};
+
+/// The smallest diagonal of R̂ for which ColumnBasis::gram is taken at tolerance ε: Q's loss
+/// of orthogonality (u κ², κ ≲ k/pivot) stays below 1e−6 of the norms the truncation
+/// measures, and the rounding of the kept product (u κ) below 1 % of ε.
+double gram_min_pivot(Eigen::Index k, double epsilon) {
+  constexpr double u = 0.5 * std::numeric_limits<double>::epsilon();
+  const double kd = double(std::max<Eigen::Index>(k, 1));
+  return std::max(kd * std::sqrt(u / 1e-6), 100.0 * kd * u / epsilon);
+}
+
 }  // namespace
 
-LowRankBlock recompress(const LowRankBlock& block, double epsilon) {
+bool recompression_uses_gram_bases(const LowRankBlock& block, double epsilon) {
+  const double pivot = gram_min_pivot(block.rank(), epsilon);
+  return block.rank() > 1 && ColumnBasis::gram(block.U, pivot).has_value() &&
+         ColumnBasis::gram(block.V, pivot).has_value();
+}
+
+LowRankBlock recompress(const LowRankBlock& block, double epsilon, FactorBases bases) {
   const Eigen::Index k = block.rank();
   if (k <= 1) return block;  // rank one is minimal (a zero cross never enters the block)
-  // U Vᵀ = Q_u B Q_vᵀ with B = R_u R_vᵀ (k×k), from the QR factorisations of U and V.
-  const Eigen::HouseholderQR<Eigen::MatrixXd> qu(block.U), qv(block.V);
-  const Eigen::Index ku = std::min(k, block.U.rows()), kv = std::min(k, block.V.rows());
-  const Eigen::MatrixXd ru = qu.matrixQR().topRows(ku).template triangularView<Eigen::Upper>();
-  const Eigen::MatrixXd rv = qv.matrixQR().topRows(kv).template triangularView<Eigen::Upper>();
+  // U Vᵀ = Q_u B Q_vᵀ with B = R_u R_vᵀ, from orthonormal bases of U's and V's columns: by
+  // their Gram matrices where the columns are well conditioned (ACA's are: each cross
+  // vanishes on the pivots before it), two products with U and V instead of two Householder
+  // factorisations and their applications; by Householder reflections otherwise.
+  std::optional<ColumnBasis> gu, gv;
+  if (bases == FactorBases::gram_where_conditioned) {
+    const double pivot = gram_min_pivot(k, epsilon);
+    gu = ColumnBasis::gram(block.U, pivot);
+    if (gu) gv = ColumnBasis::gram(block.V, pivot);
+  }
+  const bool gram = gu.has_value() && gv.has_value();
+  const ColumnBasis bu = gram ? std::move(*gu) : ColumnBasis::householder(block.U);
+  const ColumnBasis bv = gram ? std::move(*gv) : ColumnBasis::householder(block.V);
+  const Eigen::Index ku = bu.r().rows(), kv = bv.r().rows();
   // B W = C with W orthonormal and C's columns orthogonal: the SVD, σᵢ = ‖cᵢ‖.
-  Eigen::MatrixXd c = ru * rv.transpose();
+  Eigen::MatrixXd c = bu.r() * bv.r().transpose();
   Eigen::MatrixXd w = Eigen::MatrixXd::Identity(kv, kv);
   const Eigen::VectorXd all2 = c.colwise().squaredNorm().transpose();
   const double allowed2 = epsilon * epsilon * all2.sum();
@@ -195,17 +276,15 @@ LowRankBlock recompress(const LowRankBlock& block, double epsilon) {
     tail2 += norms2(order[size_t(r - 1)]);
     --r;
   }
-  // U' = Q_u [C_r; 0] and V' = Q_v [W_r; 0]: the Householder reflectors applied to the r
-  // kept columns only (forming Q_u explicitly would cost k/r times more).
-  LowRankBlock out;
-  out.U = Eigen::MatrixXd::Zero(block.U.rows(), r);
-  out.V = Eigen::MatrixXd::Zero(block.V.rows(), r);
+  // U' = Q_u C_r and V' = Q_v W_r.
+  Eigen::MatrixXd cu(ku, r), cv(kv, r);
   for (Eigen::Index j = 0; j < r; ++j) {
-    out.U.col(j).head(ku) = c.col(order[size_t(j)]);
-    out.V.col(j).head(kv) = w.col(order[size_t(j)]);
+    cu.col(j) = c.col(order[size_t(j)]);
+    cv.col(j) = w.col(order[size_t(j)]);
   }
-  out.U.applyOnTheLeft(qu.householderQ());
-  out.V.applyOnTheLeft(qv.householderQ());
+  LowRankBlock out;
+  out.U = bu.times(cu);
+  out.V = bv.times(cv);
   return out;
 }
 

@@ -9,8 +9,9 @@
 //   ‖u_k‖·‖v_k‖ ≤ ε·‖U Vᵀ‖_F,
 // the usual estimate of the relative Frobenius error ‖A − U Vᵀ‖_F/‖A‖_F (exact for
 // asymptotically smooth kernels on admissible blocks, where the singular values decay
-// geometrically). Recompression: U = Q_u R_u, V = Q_v R_v, B = R_u R_vᵀ, and the truncated
-// SVD of B: keep the smallest r with (Σ_{i>r} σ_i²)^{1/2} ≤ ε·‖B‖_F. The singular vectors
+// geometrically). Recompression: U = Q_u R_u, V = Q_v R_v (by Cholesky factors of the Gram
+// matrices where the columns allow, by Householder reflections otherwise), B = R_u R_vᵀ, and
+// the truncated SVD of B: keep the smallest r with (Σ_{i>r} σ_i²)^{1/2} ≤ ε·‖B‖_F. The singular vectors
 // come from the eigenvectors of BᵀB with the truncation measured on B itself (see
 // recompress): the SVD's ranks at a fifth of its cost.
 
@@ -40,9 +41,19 @@ std::optional<LowRankBlock> adaptive_cross_approximation(Eigen::Index m, Eigen::
                                                          const ColumnGenerator& column,
                                                          double epsilon, Eigen::Index max_rank);
 
+/// How recompress finds orthonormal bases of U's and V's columns: from their Gram matrices
+/// (Cholesky, columns scaled to unit norm) where the columns are conditioned well enough for
+/// ε, by Householder reflections otherwise; or always by Householder reflections.
+enum class FactorBases { gram_where_conditioned, householder };
+
 /// The smallest-rank U'·V'ᵀ within relative Frobenius distance `epsilon` of U·Vᵀ (to
 /// rounding: the rank of the truncated SVD, unless singular values lie within rounding of
-/// each other, where it may keep one more).
-LowRankBlock recompress(const LowRankBlock& block, double epsilon);
+/// each other, where it may keep one more). U' has orthogonal columns of norms σ_i, V'
+/// orthonormal ones.
+LowRankBlock recompress(const LowRankBlock& block, double epsilon,
+                        FactorBases bases = FactorBases::gram_where_conditioned);
+
+/// Whether recompress(block, epsilon) takes the Gram route for both factors.
+bool recompression_uses_gram_bases(const LowRankBlock& block, double epsilon);
 
 }  // namespace bemshape::bem

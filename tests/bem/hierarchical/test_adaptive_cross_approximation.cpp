@@ -5,6 +5,7 @@
 #include <catch2/catch.hpp>
 #include <random>
 
+#include <Eigen/LU>
 #include <Eigen/SVD>
 
 #include "bem/hierarchical/adaptive_cross_approximation.hpp"
@@ -116,4 +117,59 @@ TEST_CASE("recompression: the truncated SVD's rank and error at tolerances down 
     CHECK(r.rank() == optimal);
     CHECK((r.U * r.V.transpose() - ak).norm() <= 1.01 * epsilon * ak.norm() + 1e-15 * ak.norm());
   }
+}
+
+TEST_CASE("recompression by Gram matrices: ACA-like factors, the same ranks and errors as by Householder") {
+  // Factors shaped like ACA's: U Vᵀ = A_k with u_l = Σ_{i≥l} σ_i M_il x_i (each column
+  // mostly its own singular direction, as a cross vanishes on the pivots before it) and
+  // v_l = Σ_{i≤l} (M⁻ᵀ)_il y_i, for M unit lower triangular: columns of decaying norms that
+  // are well conditioned once scaled, which is what the Gram route needs.
+  const Eigen::MatrixX3d x = random_cloud(120, Eigen::Vector3d::Zero(), 6);
+  const Eigen::MatrixX3d y = random_cloud(90, Eigen::Vector3d(3.0, 0.5, 0.0), 7);
+  const Eigen::MatrixXd a = inverse_distances(x, y);
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(a, Eigen::ComputeThinU | Eigen::ComputeThinV);
+  const Eigen::VectorXd& sigma = svd.singularValues();
+  const int k = 30;
+  std::mt19937 rng(8);
+  std::uniform_real_distribution<double> uniform(-0.2, 0.2);
+  Eigen::MatrixXd mix = Eigen::MatrixXd::Identity(k, k);
+  for (int i = 0; i < k; ++i)
+    for (int j = 0; j < i; ++j) mix(i, j) = uniform(rng);
+  bem::LowRankBlock factors;
+  factors.U = svd.matrixU().leftCols(k) * sigma.head(k).asDiagonal() * mix;
+  factors.V = svd.matrixV().leftCols(k) * mix.inverse().transpose();
+  const Eigen::MatrixXd ak = factors.U * factors.V.transpose();
+  const double total2 = sigma.head(k).squaredNorm();
+  for (const double epsilon : {1e-4, 1e-6, 1e-8, 1e-12}) {
+    int optimal = k;
+    while (optimal > 0 && sigma.segment(optimal - 1, k - optimal + 1).squaredNorm() <= epsilon * epsilon * total2)
+      --optimal;
+    CAPTURE(epsilon, optimal);
+    // At 1e−12 the route needs scaled columns within a factor of about 3 of orthogonal
+    // (the rounding u κ against ε); either route must then meet the tolerance.
+    if (epsilon >= 1e-8) CHECK(bem::recompression_uses_gram_bases(factors, epsilon));
+    const bem::LowRankBlock gram = bem::recompress(factors, epsilon);
+    const bem::LowRankBlock householder = bem::recompress(factors, epsilon, bem::FactorBases::householder);
+    CHECK(gram.rank() == optimal);
+    CHECK(householder.rank() == optimal);
+    for (const bem::LowRankBlock* r : {&gram, &householder}) {
+      CHECK((r->U * r->V.transpose() - ak).norm() <= 1.01 * epsilon * ak.norm() + 1e-15 * ak.norm());
+      // recompress's output form: V' orthonormal, U' with orthogonal columns.
+      const Eigen::MatrixXd vv = r->V.transpose() * r->V;
+      CHECK((vv - Eigen::MatrixXd::Identity(vv.rows(), vv.cols())).norm() < 1e-6);
+      Eigen::MatrixXd uu = r->U.transpose() * r->U;
+      uu.diagonal().setZero();
+      CHECK(uu.norm() < 1e-6 * r->U.squaredNorm());
+    }
+    CHECK((gram.U * gram.V.transpose() - householder.U * householder.V.transpose()).norm() <=
+          2.02 * epsilon * ak.norm());
+  }
+  // A redundant factorisation has rank-deficient columns: Householder it is.
+  bem::LowRankBlock redundant;
+  redundant.U.resize(120, 2 * k);
+  redundant.V.resize(90, 2 * k);
+  redundant.U << factors.U, factors.U;
+  redundant.V << 0.5 * factors.V, 0.5 * factors.V;
+  CHECK(!bem::recompression_uses_gram_bases(redundant, 1e-8));
+  CHECK(bem::recompress(redundant, 1e-8).rank() == bem::recompress(factors, 1e-8).rank());
 }
