@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Cholesky>
@@ -230,12 +231,20 @@ double gram_min_pivot(Eigen::Index k, double epsilon) {
   return std::max(kd * std::sqrt(u / 1e-6), 100.0 * kd * u / epsilon);
 }
 
+/// Gram bases of U's and V's columns, if both apply at tolerance ε.
+std::optional<std::pair<ColumnBasis, ColumnBasis>> gram_bases(const LowRankBlock& block, double epsilon) {
+  const double pivot = gram_min_pivot(block.rank(), epsilon);
+  auto u = ColumnBasis::gram(block.U, pivot);
+  if (!u) return std::nullopt;
+  auto v = ColumnBasis::gram(block.V, pivot);
+  if (!v) return std::nullopt;
+  return std::pair{std::move(*u), std::move(*v)};
+}
+
 }  // namespace
 
 bool recompression_uses_gram_bases(const LowRankBlock& block, double epsilon) {
-  const double pivot = gram_min_pivot(block.rank(), epsilon);
-  return block.rank() > 1 && ColumnBasis::gram(block.U, pivot).has_value() &&
-         ColumnBasis::gram(block.V, pivot).has_value();
+  return block.rank() > 1 && gram_bases(block, epsilon).has_value();
 }
 
 LowRankBlock recompress(const LowRankBlock& block, double epsilon, FactorBases bases) {
@@ -245,15 +254,9 @@ LowRankBlock recompress(const LowRankBlock& block, double epsilon, FactorBases b
   // their Gram matrices where the columns are well conditioned (ACA's are: each cross
   // vanishes on the pivots before it), two products with U and V instead of two Householder
   // factorisations and their applications; by Householder reflections otherwise.
-  std::optional<ColumnBasis> gu, gv;
-  if (bases == FactorBases::gram_where_conditioned) {
-    const double pivot = gram_min_pivot(k, epsilon);
-    gu = ColumnBasis::gram(block.U, pivot);
-    if (gu) gv = ColumnBasis::gram(block.V, pivot);
-  }
-  const bool gram = gu.has_value() && gv.has_value();
-  const ColumnBasis bu = gram ? std::move(*gu) : ColumnBasis::householder(block.U);
-  const ColumnBasis bv = gram ? std::move(*gv) : ColumnBasis::householder(block.V);
+  auto gram = bases == FactorBases::gram_where_conditioned ? gram_bases(block, epsilon) : std::nullopt;
+  const ColumnBasis bu = gram ? std::move(gram->first) : ColumnBasis::householder(block.U);
+  const ColumnBasis bv = gram ? std::move(gram->second) : ColumnBasis::householder(block.V);
   const Eigen::Index ku = bu.r().rows(), kv = bv.r().rows();
   // B W = C with W orthonormal and C's columns orthogonal: the SVD, σᵢ = ‖cᵢ‖.
   Eigen::MatrixXd c = bu.r() * bv.r().transpose();

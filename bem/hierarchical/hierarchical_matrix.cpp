@@ -78,6 +78,10 @@ HierarchicalMatrix::HierarchicalMatrix(const ClusterTree& row_tree, const Cluste
       Block& b = blocks_[k];
       const Eigen::Index m = b.row_end - b.row_begin, n = b.col_end - b.col_begin;
       bool stored = false;
+      const auto fill_whole = [&] {
+        b.dense.resize(o * m, g * n);
+        generator.fill(b.row_begin, b.row_end, b.col_begin, b.col_end, b.dense);
+      };
       if (b.is_low_rank) {
         // ACA on the o·m × g·n block; a rank at which U and V hold as many bytes as the block
         // itself gains nothing, so the block is then computed densely. With fixed-point columns
@@ -89,11 +93,8 @@ HierarchicalMatrix::HierarchicalMatrix(const ClusterTree& row_tree, const Cluste
                             options.single_precision_near_field;
         const Eigen::Index max_rank =
             narrow ? std::min(std::min(o * m, g * n), (3 * equal_entries) / 2) : equal_entries;
-        // Small blocks are filled whole first (dense_first_entries) and ACA reads them.
-        if (o * m * g * n <= kDenseFirstEntries) {
-          b.dense.resize(o * m, g * n);
-          generator.fill(b.row_begin, b.row_end, b.col_begin, b.col_end, b.dense);
-        }
+        // Small blocks are filled whole first (kDenseFirstEntries) and ACA reads them.
+        if (o * m * g * n <= kDenseFirstEntries) fill_whole();
         Eigen::MatrixXd column_block(o * m, g);
         Eigen::MatrixXd row_block(o, g * n);
         auto aca = adaptive_cross_approximation(
@@ -139,10 +140,7 @@ HierarchicalMatrix::HierarchicalMatrix(const ClusterTree& row_tree, const Cluste
         }
       }
       if (!stored) {
-        if (b.dense.size() == 0) {  // not filled above
-          b.dense.resize(o * m, g * n);
-          generator.fill(b.row_begin, b.row_end, b.col_begin, b.col_end, b.dense);
-        }
+        if (b.dense.size() == 0) fill_whole();  // not filled above
         if (options.single_precision_near_field) {
           b.dense_single = b.dense.cast<float>();
           b.dense = Eigen::MatrixXd();

@@ -37,6 +37,16 @@ Eigen::MatrixXd inverse_distances(const Eigen::MatrixX3d& x, const Eigen::Matrix
   return a;
 }
 
+/// The smallest r with (Σ_{r<i≤k} σ_i²)^{1/2} ≤ ε (Σ_{i≤k} σ_i²)^{1/2}: the rank of the
+/// truncated SVD of A_k at relative tolerance ε.
+int optimal_rank(const Eigen::VectorXd& sigma, int k, double epsilon) {
+  const double total2 = sigma.head(k).squaredNorm();
+  int optimal = k;
+  while (optimal > 0 && sigma.segment(optimal - 1, k - optimal + 1).squaredNorm() <= epsilon * epsilon * total2)
+    --optimal;
+  return optimal;
+}
+
 }  // namespace
 
 TEST_CASE("ACA: the 1/r kernel between clusters two diameters apart, to the tolerance") {
@@ -107,11 +117,7 @@ TEST_CASE("recompression: the truncated SVD's rank and error at tolerances down 
   factors.V << svd.matrixV().leftCols(k), svd.matrixV().leftCols(k);
   const Eigen::MatrixXd ak = us * svd.matrixV().leftCols(k).transpose();
   for (const double epsilon : {1e-4, 1e-8, 1e-10, 1e-12}) {
-    // The optimal rank: the smallest r with (Σ_{i>r} σ_i²)^{1/2} ≤ ε ‖A_k‖_F.
-    const double total2 = sigma.head(k).squaredNorm();
-    int optimal = k;
-    while (optimal > 0 && sigma.segment(optimal - 1, k - optimal + 1).squaredNorm() <= epsilon * epsilon * total2)
-      --optimal;
+    const int optimal = optimal_rank(sigma, k, epsilon);
     const bem::LowRankBlock r = bem::recompress(factors, epsilon);
     CAPTURE(epsilon, optimal, r.rank());
     CHECK(r.rank() == optimal);
@@ -139,11 +145,8 @@ TEST_CASE("recompression by Gram matrices: ACA-like factors, the same ranks and 
   factors.U = svd.matrixU().leftCols(k) * sigma.head(k).asDiagonal() * mix;
   factors.V = svd.matrixV().leftCols(k) * mix.inverse().transpose();
   const Eigen::MatrixXd ak = factors.U * factors.V.transpose();
-  const double total2 = sigma.head(k).squaredNorm();
   for (const double epsilon : {1e-4, 1e-6, 1e-8, 1e-12}) {
-    int optimal = k;
-    while (optimal > 0 && sigma.segment(optimal - 1, k - optimal + 1).squaredNorm() <= epsilon * epsilon * total2)
-      --optimal;
+    const int optimal = optimal_rank(sigma, k, epsilon);
     CAPTURE(epsilon, optimal);
     // At 1e−12 the route needs scaled columns within a factor of about 3 of orthogonal
     // (the rounding u κ against ε); either route must then meet the tolerance.
