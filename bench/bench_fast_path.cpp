@@ -7,6 +7,8 @@
 //   bench_fast_path file MESH H0 [dense|hmatrix|both] [options as above]
 //                   (a mesh file as the solver mesh, no refinement; no closed form, error 0)
 //   bench_fast_path entry-costs FACES     (where a row of the operators spends its time)
+//   bench_fast_path nested-bases sphere|box FACES [--aca E] [--eta H] [--leaf L] [--basis T]
+//                   (the Laplace far field in the H² form against the H-matrix's factors)
 //   bench_fast_path interior sphere|box FACES POINTS [--solve] [--order P] [--theta T]
 //                   [--leaf L] [--negligible D] [--reference M] [--sweep]      (evaluate_potential on a grid: treecode vs direct)
 //
@@ -18,6 +20,7 @@
 // middle of a wall for the plate and the box) and, with `both`, the largest differences
 // between the paths, ‖dense − hmatrix‖/‖dense‖ over all faces and directions (phi, q,
 // thickness).
+#include <algorithm>
 #include <chrono>
 #include <ctime>
 #include <cmath>
@@ -31,6 +34,8 @@
 #include "bem/galerkin_operators.hpp"
 #include "bem/laplace_kernel.hpp"
 #include "bem/yukawa_kernel.hpp"
+#include "bem/hierarchical/galerkin_block_generator.hpp"
+#include "bem/hierarchical/nested_cluster_basis.hpp"
 #include "bem/hmatrix_transmission_solver.hpp"
 #include "bem/potential_evaluation.hpp"
 #include "bem/surface_gradient.hpp"
@@ -377,11 +382,122 @@ int interior(int argc, char** argv) {
   return 0;
 }
 
+/// The Laplace row's far field [−K0 | V0] in the H² form against the H-matrix, on the sphere
+/// or the thin-walled box of `faces` faces (bem/hierarchical/nested_cluster_basis.hpp):
+///
+///   bench_fast_path nested-bases sphere|box FACES [--aca E] [--eta H] [--leaf L] [--basis T]
+///
+/// builds the solver's H-matrix (narrow factors, its bytes), then the same operator with
+/// factors in double precision (ACA at E, default 1e−8), converts its low-rank blocks to
+/// nested bases at tolerance T (default E) and prints the entries of both forms, the ranks
+/// of the bases by tree level and the conversion's error bound ‖A_b − Q S Pᵀ‖/‖A_b‖ over a
+/// sample of blocks.
+int nested_bases(int argc, char** argv) {
+  if (argc < 4) {
+    std::fprintf(stderr, "usage: bench_fast_path nested-bases sphere|box FACES [--aca E] [--eta H] [--leaf L] [--basis T]\n");
+    return 2;
+  }
+  const std::string shape = argv[2];
+  double aca = 1e-8, eta = bem::kDefaultAdmissibility, basis_tolerance = 0.0;
+  Eigen::Index leaf = bem::ClusterTree::kDefaultLeafSize;
+  for (int i = 4; i + 1 < argc; i += 2) {
+    const std::string a = argv[i];
+    if (a == "--aca") aca = std::atof(argv[i + 1]);
+    else if (a == "--eta") eta = std::atof(argv[i + 1]);
+    else if (a == "--leaf") leaf = std::atol(argv[i + 1]);
+    else if (a == "--basis") basis_tolerance = std::atof(argv[i + 1]);
+    else {
+      std::fprintf(stderr, "bench_fast_path: unknown argument %s\n", a.c_str());
+      return 2;
+    }
+  }
+  if (basis_tolerance == 0.0) basis_tolerance = aca;
+  const Problem p = shape == "sphere" ? sphere(std::atof(argv[3])) : box(std::atof(argv[3]));
+  const auto panels = bem::make_panels(p.mesh);
+  const bem::ClusterTree tree(panels, leaf);
+  const bem::GalerkinBlockGenerator<bem::LaplaceKernel> generator(bem::LaplaceKernel{}, panels, tree);
+  bem::HierarchicalMatrixStats narrow;
+  {
+    const bem::HierarchicalMatrix solver_form(tree, generator, {aca, eta, true, true, true});
+    narrow = solver_form.stats();
+  }
+  auto t0 = Clock::now();
+  const bem::HierarchicalMatrix exact_factors(tree, generator, {aca, eta, false, false, false});
+  const double assemble_seconds = seconds(t0);
+  const auto blocks = exact_factors.low_rank_blocks();
+  std::uint64_t h_entries = 0;
+  for (const auto& b : blocks) h_entries += std::uint64_t(b.U.size() + b.V.size());
+  t0 = Clock::now();
+  const bem::NestedClusterBasis h2(tree, blocks, 2, basis_tolerance);
+  const double convert_seconds = seconds(t0);
+  const auto storage = h2.storage();
+
+  // Ranks by tree level (level 0: the root).
+  std::vector<int> level(tree.clusters().size(), 0);
+  for (std::size_t c = 0; c < level.size(); ++c)
+    if (!tree.clusters()[c].is_leaf()) {
+      level[std::size_t(tree.clusters()[c].first_child)] = level[c] + 1;
+      level[std::size_t(tree.clusters()[c].first_child + 1)] = level[c] + 1;
+    }
+  const int levels = 1 + *std::max_element(level.begin(), level.end());
+  std::string by_level;
+  for (int l = 0; l < levels; ++l) {
+    double row_sum = 0, col_sum = 0, size_sum = 0;
+    long count = 0;
+    Eigen::Index row_max = 0, col_max = 0;
+    for (std::size_t c = 0; c < level.size(); ++c) {
+      if (level[c] != l || h2.rows().rank[c] + h2.columns().rank[c] == 0) continue;
+      ++count;
+      size_sum += double(tree.clusters()[c].size());
+      row_sum += double(h2.rows().rank[c]);
+      col_sum += double(h2.columns().rank[c]);
+      row_max = std::max(row_max, h2.rows().rank[c]);
+      col_max = std::max(col_max, h2.columns().rank[c]);
+    }
+    if (count == 0) continue;
+    char row[256];
+    std::snprintf(row, sizeof row,
+                  "%s{\"level\": %d, \"clusters\": %ld, \"mean_size\": %.0f, \"row_rank_mean\": %.1f, "
+                  "\"row_rank_max\": %ld, \"column_rank_mean\": %.1f, \"column_rank_max\": %ld}",
+                  by_level.empty() ? "" : ", ", l, count, size_sum / double(count), row_sum / double(count),
+                  long(row_max), col_sum / double(count), long(col_max));
+    by_level += row;
+  }
+  // The conversion's error on about 400 blocks spread over the list (sizes vary along it).
+  const std::size_t stride = std::max<std::size_t>(1, blocks.size() / 400);
+  double worst = 0.0, sum = 0.0;
+  long sampled = 0;
+  for (std::size_t b = 0; b < blocks.size(); b += stride, ++sampled) {
+    const double e = bem::nested_basis_error_bound(blocks[b].U, blocks[b].V, h2.rows().expand(tree, h2.row_cluster(b)),
+                                                   h2.columns().expand(tree, h2.column_cluster(b)));
+    worst = std::max(worst, e);
+    sum += e;
+  }
+  std::printf("{\"shape\": \"%s\", \"faces\": %ld, \"leaf\": %ld, \"eta\": %.3g, \"aca\": %.1e, \"basis_tolerance\": %.1e, "
+              "\"low_rank_blocks\": %zu, \"solver_far_field_mb\": %.1f, \"solver_factor_entries\": %llu, "
+              "\"double_factor_entries\": %llu, \"h2_entries\": %llu, \"h2_leaf_basis_entries\": %llu, "
+              "\"h2_transfer_entries\": %llu, \"h2_coupling_entries\": %llu, \"h2_factored_coupling_entries\": %llu, "
+              "\"h2_entries_factored_couplings\": %llu, \"h2_single_mb\": %.1f, "
+              "\"assemble_seconds\": %.1f, \"convert_seconds\": %.1f, \"error_bound_max\": %.2e, "
+              "\"error_bound_mean\": %.2e, \"sampled_blocks\": %ld, \"peak_rss_mb\": %.1f, \"levels\": [%s]}\n",
+              shape.c_str(), long(p.mesh.num_faces()), long(leaf), eta, aca, basis_tolerance, blocks.size(),
+              double(narrow.low_rank_bytes) / 1e6, (unsigned long long)narrow.low_rank_entries,
+              (unsigned long long)h_entries, (unsigned long long)storage.entries(),
+              (unsigned long long)storage.leaf_basis_entries, (unsigned long long)storage.transfer_entries,
+              (unsigned long long)storage.coupling_entries, (unsigned long long)storage.factored_coupling_entries,
+              (unsigned long long)storage.entries_with_factored_couplings(),
+              4.0 * double(storage.entries_with_factored_couplings()) / 1e6,
+              assemble_seconds, convert_seconds, worst, sum / double(sampled), sampled,
+              double(peak_resident_bytes()) / 1e6, by_level.c_str());
+  return 0;
+}
+
 int main(int argc, char** argv) {
   bemshape::restart_with_heap_huge_pages(argv);  // as the bemshape executable does
   bemshape::retain_freed_heap_memory();
   if (argc == 3 && std::string(argv[1]) == "entry-costs") return entry_costs(std::atof(argv[2]));
   if (argc >= 2 && std::string(argv[1]) == "interior") return interior(argc, argv);
+  if (argc >= 2 && std::string(argv[1]) == "nested-bases") return nested_bases(argc, argv);
   if (argc < 3) {
     std::fprintf(stderr, "usage: bench_fast_path sphere|plate|box FACES [dense|hmatrix|both] "
                          "[--tolerance T] [--aca E] [--leaf L] [--eta H] [--single|--double] [--block B] [--coarse C]\n");

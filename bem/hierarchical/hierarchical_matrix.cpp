@@ -304,6 +304,20 @@ std::vector<Eigen::MatrixXd> HierarchicalMatrix::diagonal_blocks(
   return out;
 }
 
+std::vector<HierarchicalMatrix::LowRankBlockCopy> HierarchicalMatrix::low_rank_blocks() const {
+  std::vector<LowRankBlockCopy> out;
+  for (const Block& b : blocks_) {
+    if (!b.is_low_rank) continue;
+    LowRankBlockCopy copy{b.row_begin, b.row_end, b.col_begin, b.col_end, b.low_rank.U, b.low_rank.V};
+    if (b.single_precision) {
+      copy.U = b.factors.u_rows(0, b.factors.rows());
+      copy.V = b.factors.v_rows(0, b.factors.cols());
+    }
+    out.push_back(std::move(copy));
+  }
+  return out;
+}
+
 std::uint64_t HierarchicalMatrix::GroupedColumns::bytes() const {
   std::uint64_t total = 8 * std::uint64_t(sums.size()) + 8 * group.size() + sizeof(Part) * parts.size();
   for (const Part& p : parts)

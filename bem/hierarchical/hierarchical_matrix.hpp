@@ -139,6 +139,17 @@ class HierarchicalMatrix {
   GroupedColumns group_columns(std::vector<Eigen::Index> group, Eigen::Index groups,
                                GroupedColumns::Storage storage) const;
 
+  /// The low-rank (admissible) blocks A_b ≈ U Vᵀ with their factors in double precision,
+  /// decoded where they are stored narrower: rows [row_begin, row_end) and columns
+  /// [col_begin, col_end) in tree order, U: o|τ| × k, V: g|σ| × k (row d·|σ| + c for density
+  /// d). A copy: what an analysis of the far field (bem/hierarchical/nested_cluster_basis.hpp)
+  /// reads.
+  struct LowRankBlockCopy {
+    Eigen::Index row_begin = 0, row_end = 0, col_begin = 0, col_end = 0;
+    Eigen::MatrixXd U, V;
+  };
+  std::vector<LowRankBlockCopy> low_rank_blocks() const;
+
   /// y += A (E x) for k vectors of group values at once: x is groups × g·k (column j·g + d =
   /// density d of vector j), y is #rows × k. Reads U of the low-rank blocks kept factored,
   /// none of V.
