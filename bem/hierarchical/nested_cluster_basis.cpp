@@ -178,6 +178,8 @@ NestedClusterBasis::NestedClusterBasis(
     row_cluster_[b] = cluster_of(blocks[b].row_begin, blocks[b].row_end);
     column_cluster_[b] = cluster_of(blocks[b].col_begin, blocks[b].col_end);
   }
+  blocks_of_row_.resize(tree.clusters().size());
+  for (std::size_t b = 0; b < count; ++b) blocks_of_row_[std::size_t(row_cluster_[b])].push_back(b);
   const double cluster_tolerance = tolerance / std::sqrt(double(depth(tree, 0)));
   std::vector<Eigen::MatrixXd> u_weight(count), v_weight(count);
   std::vector<double> norm(count);
@@ -217,6 +219,59 @@ NestedClusterBasis::NestedClusterBasis(
   coupling_.resize(count);
   for (std::size_t b = 0; b < count; ++b)
     coupling_[b] = row_transformed[b] * column_transformed[b].transpose();
+}
+
+void NestedClusterBasis::multiply_add(const ClusterTree& tree, const Eigen::Ref<const Eigen::MatrixXd>& x,
+                                      Eigen::Ref<Eigen::MatrixXd> y) const {
+  const int g = columns_.densities;
+  const Eigen::Index vectors = x.cols() / g;
+  const int clusters = int(tree.clusters().size());
+  BEMSHAPE_ASSERT(x.cols() == g * vectors && y.cols() == vectors && x.rows() == tree.root().size() &&
+                      y.rows() == tree.root().size() && int(rows_.basis.size()) == clusters,
+                  "H² product: x must be N × densities·k and y N × k, on the bases' tree");
+  std::vector<Eigen::MatrixXd> up(static_cast<std::size_t>(clusters)), down(static_cast<std::size_t>(clusters));
+  const std::vector<int> leaves = tree.leaves();
+  // Forward transformation: the leaves (in parallel), then the inner clusters children first
+  // (children have larger indices than their parent); the transfers are small.
+#pragma omp parallel for schedule(dynamic, 16)
+  for (std::size_t i = 0; i < leaves.size(); ++i) {
+    const Cluster& c = tree.cluster(leaves[i]);
+    Eigen::MatrixXd local(g * c.size(), vectors);
+    for (Eigen::Index j = 0; j < vectors; ++j)
+      for (int d = 0; d < g; ++d) local.col(j).segment(d * c.size(), c.size()) = x.col(j * g + d).segment(c.begin, c.size());
+    up[std::size_t(leaves[i])] = columns_.basis[std::size_t(leaves[i])].transpose() * local;
+  }
+  for (int t = clusters - 1; t >= 0; --t) {
+    const Cluster& c = tree.cluster(t);
+    if (c.is_leaf()) continue;
+    const auto& u1 = up[std::size_t(c.first_child)];
+    const auto& u2 = up[std::size_t(c.first_child + 1)];
+    const Eigen::MatrixXd& transfer = columns_.basis[std::size_t(t)];
+    up[std::size_t(t)] = transfer.topRows(u1.rows()).transpose() * u1 + transfer.bottomRows(u2.rows()).transpose() * u2;
+  }
+  // Couplings, each row cluster's blocks summed by one thread.
+#pragma omp parallel for schedule(dynamic, 16)
+  for (int t = 0; t < clusters; ++t) {
+    Eigen::MatrixXd& sum = down[std::size_t(t)];
+    sum = Eigen::MatrixXd::Zero(rows_.rank[std::size_t(t)], vectors);
+    for (const std::size_t b : blocks_of_row_[std::size_t(t)])
+      sum.noalias() += coupling_[b] * up[std::size_t(column_cluster_[b])];
+  }
+  // Backward transformation: the inner clusters parents first, then the leaves.
+  for (int t = 0; t < clusters; ++t) {
+    const Cluster& c = tree.cluster(t);
+    if (c.is_leaf()) continue;
+    const Eigen::MatrixXd& transfer = rows_.basis[std::size_t(t)];
+    auto& d1 = down[std::size_t(c.first_child)];
+    auto& d2 = down[std::size_t(c.first_child + 1)];
+    d1.noalias() += transfer.topRows(d1.rows()) * down[std::size_t(t)];
+    d2.noalias() += transfer.bottomRows(d2.rows()) * down[std::size_t(t)];
+  }
+#pragma omp parallel for schedule(dynamic, 16)
+  for (std::size_t i = 0; i < leaves.size(); ++i) {
+    const Cluster& c = tree.cluster(leaves[i]);
+    y.middleRows(c.begin, c.size()).noalias() += rows_.basis[std::size_t(leaves[i])] * down[std::size_t(leaves[i])];
+  }
 }
 
 NestedClusterBasis::Storage NestedClusterBasis::storage() const {

@@ -32,9 +32,9 @@
 // F_b = V_b, R from U_b. The coupling matrices are S_b = (Q_τᵀ U_b)(P_σᵀ V_b)ᵀ, from the
 // transformed factors the construction computes anyway.
 //
-// This class computes the bases, couplings and their sizes; it is what docs/benchmarks.md
-// (tenth session) measures the H² storage of the Laplace far field with. It does not yet
-// apply the operator: the solver still uses the H-matrix.
+// This class computes the bases, couplings and their sizes, and applies the far field in
+// this form; it is what docs/benchmarks.md (tenth session) measures the H² storage of the
+// Laplace far field with. The solver does not use it: it reads the whole H-matrix first.
 
 #include <cstdint>
 #include <vector>
@@ -77,6 +77,16 @@ class NestedClusterBasis {
   /// S_b, k_τ × k_σ.
   const Eigen::MatrixXd& coupling(std::size_t b) const { return coupling_[b]; }
 
+  /// y += Σ_b Q_τ S_b P_σᵀ x|_σ over the blocks, for k vectors at once, in tree order: x is
+  /// N × g·k (column j·g + d = density d of vector j, as HierarchicalMatrix::multiply_add),
+  /// y is N × k; `tree` the tree the bases were built on. The H² product's three steps: the
+  /// forward transformation x̂_σ = P_σᵀ x|_σ up the tree (the leaves' bases, then the
+  /// transfer matrices: x̂_t = T_tᵀ [x̂_t₁; x̂_t₂]), the couplings ŷ_τ = Σ_b S_b x̂_σ, and the
+  /// backward transformation down the tree ([ŷ_t₁; ŷ_t₂] += T_t ŷ_t, y|_t += Q_t ŷ_t at the
+  /// leaves). Each basis, transfer and coupling matrix is read once for all k vectors.
+  void multiply_add(const ClusterTree& tree, const Eigen::Ref<const Eigen::MatrixXd>& x,
+                    Eigen::Ref<Eigen::MatrixXd> y) const;
+
   /// Numbers stored by the H² form: the leaves' bases (both sides), the transfer matrices
   /// (both sides) and the coupling matrices, k_τ·k_σ each. S_b = (Q_τᵀU_b)(P_σᵀV_b)ᵀ has the
   /// block's H-matrix rank k_b as inner dimension, so it can also be kept as those two
@@ -99,6 +109,7 @@ class NestedClusterBasis {
   std::vector<int> row_cluster_, column_cluster_;
   std::vector<bool> leaf_;                ///< per cluster: a leaf of the tree
   std::vector<Eigen::Index> block_rank_;  ///< k_b of each block's H-matrix factors
+  std::vector<std::vector<std::size_t>> blocks_of_row_;  ///< per cluster: its blocks as row cluster
   std::vector<Eigen::MatrixXd> coupling_;
 };
 
