@@ -278,7 +278,10 @@ PanelIntegrals polar_panel_integrals(const Kernel& kernel, const Panel& panel,
         dl -= d * (dtheta * e / rho).sum();
       } else {
         const Chunk em = -(-kappa * delta).expm1();
-        sl += exp_c / kappa * (dtheta * em).sum();
+        // Held as an array before the sum: with AVX2 (no AVX-512), GCC 12 warns that the fused
+        // reduction of dtheta * em may read em uninitialized; the values are the same.
+        const Chunk weighted = dtheta * em;
+        sl += exp_c / kappa * weighted.sum();
         dl += d_over_c * exp_c * (dtheta * (delta + c * em) / rho).sum();
       }
     }
