@@ -26,6 +26,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <exception>
 #include <string>
 
 #include <sys/resource.h>
@@ -511,7 +512,7 @@ int nested_bases(int argc, char** argv) {
   return 0;
 }
 
-int main(int argc, char** argv) {
+int benchmark(int argc, char** argv) {
   bemshape::restart_with_heap_huge_pages(argv);  // as the bemshape executable does
   bemshape::retain_freed_heap_memory();
   if (argc == 3 && std::string(argv[1]) == "entry-costs") return entry_costs(std::atof(argv[2]));
@@ -605,4 +606,13 @@ int main(int argc, char** argv) {
     std::fflush(stdout);
   }
   return 0;
+}
+
+int main(int argc, char** argv) {
+  try {
+    return benchmark(argc, argv);
+  } catch (const std::exception& e) {  // the memory guard's ResourceError, a mesh file's InputError
+    std::fprintf(stderr, "bench_fast_path: %s\n", e.what());
+    return 2;
+  }
 }
