@@ -170,24 +170,22 @@ NestedClusterBasis::NestedClusterBasis(
     leaf_[c] = tree.clusters()[c].is_leaf();
   const std::size_t count = blocks.size();
   block_rank_.resize(count);
-  for (std::size_t b = 0; b < count; ++b)
-    block_rank_[b] = blocks[b].U.cols();
   row_cluster_.resize(count);
   column_cluster_.resize(count);
+  blocks_of_row_.resize(tree.clusters().size());
   for (std::size_t b = 0; b < count; ++b) {
+    block_rank_[b] = blocks[b].U.cols();
     row_cluster_[b] = cluster_of(blocks[b].row_begin, blocks[b].row_end);
     column_cluster_[b] = cluster_of(blocks[b].col_begin, blocks[b].col_end);
+    blocks_of_row_[std::size_t(row_cluster_[b])].push_back(b);
   }
-  blocks_of_row_.resize(tree.clusters().size());
-  for (std::size_t b = 0; b < count; ++b) blocks_of_row_[std::size_t(row_cluster_[b])].push_back(b);
   const double cluster_tolerance = tolerance / std::sqrt(double(depth(tree, 0)));
   std::vector<Eigen::MatrixXd> u_weight(count), v_weight(count);
-  std::vector<double> norm(count);
 #pragma omp parallel for schedule(dynamic, 16)
   for (std::size_t b = 0; b < count; ++b) {
     const Eigen::MatrixXd ru = triangular_factor(blocks[b].U), rv = triangular_factor(blocks[b].V);
-    norm[b] = (ru * rv.transpose()).norm();  // ‖U Vᵀ‖_F
-    const double scale = norm[b] > 0.0 ? 1.0 / norm[b] : 0.0;
+    const double norm = (ru * rv.transpose()).norm();  // ‖U Vᵀ‖_F
+    const double scale = norm > 0.0 ? 1.0 / norm : 0.0;
     u_weight[b] = scale * rv.transpose();  // for the row side: F = U, weight Rᵀ of V
     v_weight[b] = scale * ru.transpose();
   }
@@ -221,15 +219,18 @@ NestedClusterBasis::NestedClusterBasis(
     coupling_[b] = row_transformed[b] * column_transformed[b].transpose();
 }
 
-void NestedClusterBasis::multiply_add(const ClusterTree& tree, const Eigen::Ref<const Eigen::MatrixXd>& x,
+void NestedClusterBasis::multiply_add(const ClusterTree& tree,
+                                      const Eigen::Ref<const Eigen::MatrixXd>& x,
                                       Eigen::Ref<Eigen::MatrixXd> y) const {
   const int g = columns_.densities;
   const Eigen::Index vectors = x.cols() / g;
   const int clusters = int(tree.clusters().size());
-  BEMSHAPE_ASSERT(x.cols() == g * vectors && y.cols() == vectors && x.rows() == tree.root().size() &&
-                      y.rows() == tree.root().size() && int(rows_.basis.size()) == clusters,
+  BEMSHAPE_ASSERT(x.cols() == g * vectors && y.cols() == vectors &&
+                      x.rows() == tree.root().size() && y.rows() == tree.root().size() &&
+                      int(rows_.basis.size()) == clusters,
                   "H² product: x must be N × densities·k and y N × k, on the bases' tree");
-  std::vector<Eigen::MatrixXd> up(static_cast<std::size_t>(clusters)), down(static_cast<std::size_t>(clusters));
+  std::vector<Eigen::MatrixXd> up(static_cast<std::size_t>(clusters)),
+      down(static_cast<std::size_t>(clusters));
   const std::vector<int> leaves = tree.leaves();
   // Forward transformation: the leaves (in parallel), then the inner clusters children first
   // (children have larger indices than their parent); the transfers are small.
@@ -238,16 +239,19 @@ void NestedClusterBasis::multiply_add(const ClusterTree& tree, const Eigen::Ref<
     const Cluster& c = tree.cluster(leaves[i]);
     Eigen::MatrixXd local(g * c.size(), vectors);
     for (Eigen::Index j = 0; j < vectors; ++j)
-      for (int d = 0; d < g; ++d) local.col(j).segment(d * c.size(), c.size()) = x.col(j * g + d).segment(c.begin, c.size());
+      for (int d = 0; d < g; ++d)
+        local.col(j).segment(d * c.size(), c.size()) = x.col(j * g + d).segment(c.begin, c.size());
     up[std::size_t(leaves[i])] = columns_.basis[std::size_t(leaves[i])].transpose() * local;
   }
   for (int t = clusters - 1; t >= 0; --t) {
     const Cluster& c = tree.cluster(t);
-    if (c.is_leaf()) continue;
+    if (c.is_leaf())
+      continue;
     const auto& u1 = up[std::size_t(c.first_child)];
     const auto& u2 = up[std::size_t(c.first_child + 1)];
     const Eigen::MatrixXd& transfer = columns_.basis[std::size_t(t)];
-    up[std::size_t(t)] = transfer.topRows(u1.rows()).transpose() * u1 + transfer.bottomRows(u2.rows()).transpose() * u2;
+    up[std::size_t(t)] = transfer.topRows(u1.rows()).transpose() * u1 +
+                         transfer.bottomRows(u2.rows()).transpose() * u2;
   }
   // Couplings, each row cluster's blocks summed by one thread.
 #pragma omp parallel for schedule(dynamic, 16)
@@ -260,7 +264,8 @@ void NestedClusterBasis::multiply_add(const ClusterTree& tree, const Eigen::Ref<
   // Backward transformation: the inner clusters parents first, then the leaves.
   for (int t = 0; t < clusters; ++t) {
     const Cluster& c = tree.cluster(t);
-    if (c.is_leaf()) continue;
+    if (c.is_leaf())
+      continue;
     const Eigen::MatrixXd& transfer = rows_.basis[std::size_t(t)];
     auto& d1 = down[std::size_t(c.first_child)];
     auto& d2 = down[std::size_t(c.first_child + 1)];
@@ -270,7 +275,8 @@ void NestedClusterBasis::multiply_add(const ClusterTree& tree, const Eigen::Ref<
 #pragma omp parallel for schedule(dynamic, 16)
   for (std::size_t i = 0; i < leaves.size(); ++i) {
     const Cluster& c = tree.cluster(leaves[i]);
-    y.middleRows(c.begin, c.size()).noalias() += rows_.basis[std::size_t(leaves[i])] * down[std::size_t(leaves[i])];
+    y.middleRows(c.begin, c.size()).noalias() +=
+        rows_.basis[std::size_t(leaves[i])] * down[std::size_t(leaves[i])];
   }
 }
 

@@ -107,8 +107,8 @@ class NestedClusterBasis {
  private:
   NestedBasisSide rows_, columns_;
   std::vector<int> row_cluster_, column_cluster_;
-  std::vector<bool> leaf_;                ///< per cluster: a leaf of the tree
-  std::vector<Eigen::Index> block_rank_;  ///< k_b of each block's H-matrix factors
+  std::vector<bool> leaf_;                               ///< per cluster: a leaf of the tree
+  std::vector<Eigen::Index> block_rank_;                 ///< k_b of each block's H-matrix factors
   std::vector<std::vector<std::size_t>> blocks_of_row_;  ///< per cluster: its blocks as row cluster
   std::vector<Eigen::MatrixXd> coupling_;
 };

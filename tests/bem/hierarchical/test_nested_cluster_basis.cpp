@@ -113,7 +113,8 @@ TEST_CASE("nested cluster bases: the H² product is the blocks' product within t
   std::mt19937 rng(7);
   std::normal_distribution<double> normal;
   Eigen::MatrixXd x(n, 2 * vectors);
-  for (double& e : x.reshaped()) e = normal(rng);
+  for (double& e : x.reshaped())
+    e = normal(rng);
   // The far field block by block from the H-matrix's factors, and the bound
   // Σ_b ‖A_b − Q S Pᵀ‖ ‖x|_σ‖ ≤ 2 tolerance Σ_b ‖A_b‖_F ‖x|_σ‖ per vector.
   Eigen::MatrixXd direct = Eigen::MatrixXd::Zero(n, vectors);
@@ -122,10 +123,12 @@ TEST_CASE("nested cluster bases: the H² product is the blocks' product within t
     const Eigen::Index m = b.row_end - b.row_begin, s = b.col_end - b.col_begin;
     Eigen::MatrixXd local(2 * s, vectors);
     for (Eigen::Index j = 0; j < vectors; ++j)
-      for (int d = 0; d < 2; ++d) local.col(j).segment(d * s, s) = x.col(2 * j + d).segment(b.col_begin, s);
+      for (int d = 0; d < 2; ++d)
+        local.col(j).segment(d * s, s) = x.col(2 * j + d).segment(b.col_begin, s);
     direct.middleRows(b.row_begin, m) += b.U * (b.V.transpose() * local);
     const double norm = (b.U * b.V.transpose()).norm();
-    for (Eigen::Index j = 0; j < vectors; ++j) bound(j) += norm * local.col(j).norm();
+    for (Eigen::Index j = 0; j < vectors; ++j)
+      bound(j) += norm * local.col(j).norm();
   }
   for (const double tolerance : {0.0, 1e-8, 1e-5}) {
     const bem::NestedClusterBasis h2(op.tree, op.blocks, 2, tolerance);
