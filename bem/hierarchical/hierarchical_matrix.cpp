@@ -209,13 +209,12 @@ void add_narrow_factors_product(const AdaptivePrecisionFactors& factors, const E
 
 }  // namespace
 
-Eigen::MatrixXd HierarchicalMatrix::gather(const Eigen::Ref<const Eigen::MatrixXd>& x,
-                                           const Block& b) const {
-  const Eigen::Index n = b.col_end - b.col_begin, vectors = x.cols() / densities_;
-  Eigen::MatrixXd xs(densities_ * n, vectors);
+Eigen::MatrixXd gather_densities(const Eigen::Ref<const Eigen::MatrixXd>& x, int g,
+                                 Eigen::Index begin, Eigen::Index n) {
+  const Eigen::Index vectors = x.cols() / g;
+  Eigen::MatrixXd xs(g * n, vectors);
   for (Eigen::Index j = 0; j < vectors; ++j)
-    for (int d = 0; d < densities_; ++d)
-      xs.col(j).segment(d * n, n) = x.col(j * densities_ + d).segment(b.col_begin, n);
+    for (int d = 0; d < g; ++d) xs.col(j).segment(d * n, n) = x.col(j * g + d).segment(begin, n);
   return xs;
 }
 
@@ -235,7 +234,7 @@ void HierarchicalMatrix::multiply_add(const Eigen::Ref<const Eigen::MatrixXd>& x
 #pragma omp for schedule(static, 1)
     for (std::size_t k = 0; k < blocks_.size(); ++k) {
       const Block& b = blocks_[k];
-      const Eigen::MatrixXd xs = gather(x, b);
+      const Eigen::MatrixXd xs = gather_densities(x, densities_, b.col_begin, b.col_end - b.col_begin);
       const Eigen::Index m = b.row_end - b.row_begin;
       // The narrow blocks add straight into the rows of one output; the others, and several
       // outputs, go through `product`.

@@ -82,6 +82,12 @@ struct HierarchicalMatrixStats {
   }
 };
 
+/// Rows [begin, begin + n) of k vectors of g densities, x: #elements × g·k (column j·g + d =
+/// density d of vector j, the layout of HierarchicalMatrix::multiply_add), stacked density by
+/// density as the factors' rows are: g·n × k, row d·n + c, column j.
+Eigen::MatrixXd gather_densities(const Eigen::Ref<const Eigen::MatrixXd>& x, int g,
+                                 Eigen::Index begin, Eigen::Index n);
+
 class HierarchicalMatrix {
  public:
   /// A square operator on the elements of `tree`.
@@ -172,8 +178,6 @@ class HierarchicalMatrix {
   static Eigen::MatrixXd dense_entries(const Block& b) {
     return b.single_precision ? Eigen::MatrixXd(b.dense_single.cast<double>()) : b.dense;
   }
-  /// The block's column range of the k vectors of x: g|σ| × k, row d·|σ| + c, column j.
-  Eigen::MatrixXd gather(const Eigen::Ref<const Eigen::MatrixXd>& x, const Block& b) const;
 
   Eigen::Index rows_ = 0, cols_ = 0;
   int densities_ = 1, outputs_ = 1;

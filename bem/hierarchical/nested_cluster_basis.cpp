@@ -237,10 +237,7 @@ void NestedClusterBasis::multiply_add(const ClusterTree& tree,
 #pragma omp parallel for schedule(dynamic, 16)
   for (std::size_t i = 0; i < leaves.size(); ++i) {
     const Cluster& c = tree.cluster(leaves[i]);
-    Eigen::MatrixXd local(g * c.size(), vectors);
-    for (Eigen::Index j = 0; j < vectors; ++j)
-      for (int d = 0; d < g; ++d)
-        local.col(j).segment(d * c.size(), c.size()) = x.col(j * g + d).segment(c.begin, c.size());
+    const Eigen::MatrixXd local = gather_densities(x, g, c.begin, c.size());
     up[std::size_t(leaves[i])] = columns_.basis[std::size_t(leaves[i])].transpose() * local;
   }
   for (int t = clusters - 1; t >= 0; --t) {

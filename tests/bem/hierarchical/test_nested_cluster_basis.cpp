@@ -121,10 +121,7 @@ TEST_CASE("nested cluster bases: the H² product is the blocks' product within t
   Eigen::VectorXd bound = Eigen::VectorXd::Zero(vectors);
   for (const auto& b : op.blocks) {
     const Eigen::Index m = b.row_end - b.row_begin, s = b.col_end - b.col_begin;
-    Eigen::MatrixXd local(2 * s, vectors);
-    for (Eigen::Index j = 0; j < vectors; ++j)
-      for (int d = 0; d < 2; ++d)
-        local.col(j).segment(d * s, s) = x.col(2 * j + d).segment(b.col_begin, s);
+    const Eigen::MatrixXd local = bem::gather_densities(x, 2, b.col_begin, s);
     direct.middleRows(b.row_begin, m) += b.U * (b.V.transpose() * local);
     const double norm = (b.U * b.V.transpose()).norm();
     for (Eigen::Index j = 0; j < vectors; ++j)
