@@ -1,9 +1,13 @@
 // Throughput of the panel integrals in a dense far-field loop: every (centroid, panel) pair of
 // a geodesic sphere whose distance ratio puts it in the Gauss range, as the dense assembly and
-// the ACA row/column generators will call them. Not a test: prints entries per second.
+// the ACA row/column generators will call them; then the cost per point of the larger Gauss
+// rules (gauss_panel_integrals) on one panel and of the exponential per SIMD lane
+// (bem/vector_exponential.hpp against Eigen's). Not a test: prints entries per second and
+// nanoseconds.
 //
-//   build-bem/bench/bench_panel_integrals [frequency=24]
+//   build/bench/bench_panel_integrals [frequency=24]
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <vector>
@@ -11,6 +15,7 @@
 #include "bem/laplace_kernel.hpp"
 #include "bem/panel.hpp"
 #include "bem/panel_integrals.hpp"
+#include "bem/vector_exponential.hpp"
 #include "bem/yukawa_kernel.hpp"
 #include "geometry/primitive_meshes.hpp"
 
@@ -28,7 +33,8 @@ void measure(const char* name, const std::vector<bem::Panel>& panels, F&& entry)
   for (size_t i = 0; i < n; ++i) {
     const Eigen::Vector3d& x = panels[i].centroid;
     for (size_t k = 0; k < n; ++k) {
-      if (k == i) continue;
+      if (k == i)
+        continue;
       checksum += entry(panels[k], x);
       ++count;
     }
@@ -36,6 +42,46 @@ void measure(const char* name, const std::vector<bem::Panel>& panels, F&& entry)
   const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
   std::printf("%-34s %10ld entries  %7.3f s  %8.2e entries/s  (checksum %.12g)\n", name, count,
               seconds, count / seconds, checksum);
+}
+
+/// Nanoseconds per rule point of gauss_panel_integrals by `rule` over 1000 targets at 2 to 4
+/// diameters from one panel, repeated.
+template <class Kernel>
+void measure_rule(const char* name, const Kernel& kernel, const bem::TriangleRule& rule) {
+  const bem::Panel panel = bem::make_panel(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0, 0),
+                                           Eigen::Vector3d(0.4, 0.9, 0.1));
+  std::vector<Eigen::Vector3d> targets;
+  for (int i = 0; i < 1000; ++i) {
+    const double t = 0.001 * i;
+    const Eigen::Vector3d direction(std::cos(17.0 * t), std::sin(17.0 * t), 2.0 * t - 1.0);
+    targets.push_back(panel.centroid + (2.0 + 2.0 * t) * panel.diameter * direction.normalized());
+  }
+  constexpr int repeats = 2000;
+  double checksum = 0.0;
+  const auto start = Clock::now();
+  for (int r = 0; r < repeats; ++r)
+    for (const Eigen::Vector3d& x : targets) {
+      const bem::PanelIntegrals p = bem::gauss_panel_integrals(kernel, panel, x, rule, false);
+      checksum += p.single_layer + p.double_layer;
+    }
+  const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  std::printf("%-34s %2d points  %6.2f ns per point  (checksum %.12g)\n", name, rule.size(),
+              1e9 * seconds / (double(repeats) * double(targets.size()) * rule.size()), checksum);
+}
+
+/// Nanoseconds per entry of e^x over arrays of 64 arguments in [−30, 0].
+template <class Exponential>
+void measure_exponential(const char* name, Exponential&& exponential) {
+  using Chunk = Eigen::Array<double, 64, 1>;
+  const Chunk x = Chunk::LinSpaced(-30.0, -1e-3);
+  constexpr int repeats = 400000;
+  Chunk sum = Chunk::Zero();
+  const auto start = Clock::now();
+  for (int r = 0; r < repeats; ++r)
+    sum += exponential(Chunk(x - 1e-12 * r));
+  const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  std::printf("%-34s %6.2f ns per entry  (checksum %.12g)\n", name,
+              1e9 * seconds / (double(repeats) * double(x.size())), sum.sum());
 }
 
 }  // namespace
@@ -62,5 +108,19 @@ int main(int argc, char** argv) {
             const auto r = bem::integrate_panel(yukawa, p, x);
             return r.single_layer + r.double_layer;
           });
+  // κ·diameter = 3, the default element size's (bem/transmission_parameters.hpp).
+  const bem::YukawaKernel yukawa_unit{3.0 / bem::make_panel(Eigen::Vector3d(0, 0, 0),
+                                                            Eigen::Vector3d(1, 0, 0),
+                                                            Eigen::Vector3d(0.4, 0.9, 0.1))
+                                                .diameter};
+  for (const int n : {4, 6, 8}) {
+    measure_rule("Laplace Gauss rule, one panel", laplace, bem::collapsed_gauss_rule(n));
+    measure_rule("Yukawa Gauss rule, one panel", yukawa_unit, bem::collapsed_gauss_rule(n));
+  }
+  measure_exponential("e^x, bem::vector_exp", [](const auto& x) {
+    return bem::vector_exp<Eigen::Array<double, 64, 1>>(x);
+  });
+  measure_exponential("e^x, Eigen exp",
+                      [](const auto& x) { return Eigen::Array<double, 64, 1>(x.exp()); });
   return 0;
 }
