@@ -1,7 +1,8 @@
 // Throughput of the panel integrals in a dense far-field loop: every (centroid, panel) pair of
 // a geodesic sphere whose distance ratio puts it in the Gauss range, as the dense assembly and
-// the ACA row/column generators will call them; then the cost per point of the larger Gauss
-// rules (gauss_panel_integrals) on one panel and of the exponential per SIMD lane
+// the ACA row/column generators will call them, and the far-field lanes those generators use
+// (V and K of 8 pairs at once, bem/far_field_lanes.hpp); then the cost per point of the larger
+// Gauss rules (gauss_panel_integrals) on one panel and of the exponential per SIMD lane
 // (bem/vector_exponential.hpp against Eigen's). Not a test: prints entries per second and
 // nanoseconds.
 //
@@ -12,8 +13,11 @@
 #include <cstdlib>
 #include <vector>
 
+#include "bem/far_field_lanes.hpp"
+#include "bem/galerkin_operators.hpp"
 #include "bem/laplace_kernel.hpp"
 #include "bem/panel.hpp"
+#include "bem/panel_arrays.hpp"
 #include "bem/panel_integrals.hpp"
 #include "bem/vector_exponential.hpp"
 #include "bem/yukawa_kernel.hpp"
@@ -42,6 +46,33 @@ void measure(const char* name, const std::vector<bem::Panel>& panels, F&& entry)
   const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
   std::printf("%-34s %10ld entries  %7.3f s  %8.2e entries/s  (checksum %.12g)\n", name, count,
               seconds, count / seconds, checksum);
+}
+
+/// Entries per second of the assembly's own far-field path, laplace_far_field_lanes: each
+/// centroid against consecutive panels 8 at a time, V and K together, the pairs it computes
+/// (those at least OuterRuleThresholds::far_ratio diameters apart) counted.
+void measure_far_field_lanes(const std::vector<bem::Panel>& panels) {
+  const bem::PanelArrays arrays(panels);
+  const auto n = static_cast<Eigen::Index>(panels.size());
+  double checksum = 0.0;
+  long count = 0;
+  bem::FarFieldEntries e{bem::FarFieldLanes::Zero(), bem::FarFieldLanes::Zero()};
+  const auto start = Clock::now();
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const bem::PanelLanes test = bem::PanelLanes::repeated(arrays, i);
+    for (Eigen::Index k = 0; k + bem::kFarFieldLanes <= n; k += bem::kFarFieldLanes) {
+      const unsigned done = bem::laplace_far_field_lanes(
+          test, bem::PanelLanes::consecutive(arrays, k), bem::OuterRuleThresholds::far_ratio, e);
+      for (int l = 0; l < bem::kFarFieldLanes; ++l)
+        if (done & (1u << l)) {
+          checksum += e.single_layer(l) + e.double_layer(l);
+          ++count;
+        }
+    }
+  }
+  const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  std::printf("%-34s %10ld entries  %7.3f s  %8.2e entries/s  (checksum %.12g)\n",
+              "Laplace far-field lanes (V and K)", count, seconds, count / seconds, checksum);
 }
 
 /// Nanoseconds per rule point of gauss_panel_integrals by `rule` over 1000 targets at 2 to 4
@@ -108,6 +139,7 @@ int main(int argc, char** argv) {
             const auto r = bem::integrate_panel(yukawa, p, x);
             return r.single_layer + r.double_layer;
           });
+  measure_far_field_lanes(panels);
   // κ·diameter = 3, the default element size's (bem/transmission_parameters.hpp).
   const bem::YukawaKernel yukawa_unit{3.0 / bem::make_panel(Eigen::Vector3d(0, 0, 0),
                                                             Eigen::Vector3d(1, 0, 0),
