@@ -75,12 +75,17 @@ void measure_far_field_lanes(const std::vector<bem::Panel>& panels) {
               "Laplace far-field lanes (V and K)", count, seconds, count / seconds, checksum);
 }
 
+/// The panel measure_rule integrates over: a scalene triangle, slightly tilted.
+bem::Panel rule_panel() {
+  return bem::make_panel(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0, 0),
+                         Eigen::Vector3d(0.4, 0.9, 0.1));
+}
+
 /// Nanoseconds per rule point of gauss_panel_integrals by `rule` over 1000 targets at 2 to 4
-/// diameters from one panel, repeated.
+/// diameters from rule_panel(), repeated.
 template <class Kernel>
 void measure_rule(const char* name, const Kernel& kernel, const bem::TriangleRule& rule) {
-  const bem::Panel panel = bem::make_panel(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0, 0),
-                                           Eigen::Vector3d(0.4, 0.9, 0.1));
+  const bem::Panel panel = rule_panel();
   std::vector<Eigen::Vector3d> targets;
   for (int i = 0; i < 1000; ++i) {
     const double t = 0.001 * i;
@@ -141,10 +146,7 @@ int main(int argc, char** argv) {
           });
   measure_far_field_lanes(panels);
   // κ·diameter = 3, the default element size's (bem/transmission_parameters.hpp).
-  const bem::YukawaKernel yukawa_unit{3.0 / bem::make_panel(Eigen::Vector3d(0, 0, 0),
-                                                            Eigen::Vector3d(1, 0, 0),
-                                                            Eigen::Vector3d(0.4, 0.9, 0.1))
-                                                .diameter};
+  const bem::YukawaKernel yukawa_unit{3.0 / rule_panel().diameter};
   for (const int n : {4, 6, 8}) {
     measure_rule("Laplace Gauss rule, one panel", laplace, bem::collapsed_gauss_rule(n));
     measure_rule("Yukawa Gauss rule, one panel", yukawa_unit, bem::collapsed_gauss_rule(n));
