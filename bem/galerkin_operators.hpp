@@ -94,11 +94,12 @@ inline void subdivided_rule(const Panel& panel, int levels, const TriangleRule& 
 
 /// Yukawa entries are judged against the size of the row's largest entries, not their own:
 /// an entry attenuated by s = e^{−κ·gap} (gap = the smallest possible distance between the
-/// panels) needs only relative accuracy kYukawaAbsoluteAccuracy/s.
+/// panels) needs only relative accuracy absolute_accuracy/s.
 struct YukawaAttenuation {
   /// Absolute accuracy of a Yukawa entry relative to an unattenuated one: one digit below
-  /// the quadrature's 1e−8 target, so dropped and cheapened entries do not show.
-  static constexpr double absolute_accuracy = 1e-9;
+  /// the quadrature's 1e−8 target, so dropped and cheapened entries do not show. The
+  /// attenuated rule table of bem/panel_integrals.hpp keeps the same accuracy.
+  static constexpr double absolute_accuracy = kAttenuatedRuleAccuracy;
   /// Entries attenuated below this are zero: e^{−κ·gap} < 1e−10 (gap > 23/κ).
   static constexpr double negligible = 1e-10;
   /// Below this attenuation a collapsed Gauss rule replaces integrate_panel's choice.
@@ -232,7 +233,7 @@ class GalerkinOperators {
       if (n > 0) return attenuated_entry(test, trial, collapsed_gauss_rule(n));
     }
     if (ratio >= OuterRuleThresholds::far_ratio) {
-      const PanelIntegrals p = integrate_panel(kernel_, trial, test.centroid);
+      const PanelIntegrals p = trial_integrals(trial, test.centroid);
       return {test.area * p.single_layer, test.area * p.double_layer};
     }
     if (ratio >= OuterRuleThresholds::middle_ratio)
@@ -299,6 +300,16 @@ class GalerkinOperators {
     }
   }
 
+  /// The trial panel's single and double layer at an outer rule point x: for Yukawa to
+  /// YukawaAttenuation::absolute_accuracy of an unattenuated entry
+  /// (integrate_attenuated_panel), for Laplace to 1e−8 of the entry (integrate_panel).
+  PanelIntegrals trial_integrals(const Panel& trial, const Eigen::Vector3d& x) const {
+    if constexpr (Kernel::has_exponential_decay)
+      return integrate_attenuated_panel(kernel_, trial, x);
+    else
+      return integrate_panel(kernel_, trial, x);
+  }
+
   /// The entry by `rule` on T_j split into 4^levels sub-triangles, times the panel integrals
   /// of T_k at each point (exact in the radial direction, bem/panel_integrals.hpp): the
   /// scheme of the near pairs that do not touch, and with many levels the reference the tests
@@ -312,7 +323,7 @@ class GalerkinOperators {
     subdivided_rule(test, levels, rule, points, weights);
     Entry e;
     for (size_t q = 0; q < points.size(); ++q) {
-      const PanelIntegrals p = integrate_panel(kernel_, trial, points[q]);
+      const PanelIntegrals p = trial_integrals(trial, points[q]);
       e.single_layer += weights[q] * p.single_layer;
       e.double_layer += weights[q] * p.double_layer;
     }

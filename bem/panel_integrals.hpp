@@ -64,6 +64,36 @@ inline const TriangleRule* select_far_field_rule_squared(double distance_squared
   return nullptr;
 }
 
+/// The accuracy of integrate_attenuated_panel, relative to the Laplace magnitude at the same
+/// distance: one digit below the 1e−8 the far-field rules keep relative to the entry itself.
+inline constexpr double kAttenuatedRuleAccuracy = 1e-9;
+
+/// One row of the attenuated Yukawa rule table: the rule keeps V within
+/// kAttenuatedRuleAccuracy · |T|/(4πr) and K within kAttenuatedRuleAccuracy · |T|/(4πr²)
+/// (r = |x − centroid|) for every target with η ≥ min_ratio and κ·diameter in
+/// [min_kappa_diameter, max_kappa_diameter]. Those scales are the kernel's without e^{−κr}:
+/// the rule may be as much less accurate relative to the entry itself as e^{−κr} is small,
+/// which is what makes it cheaper than far_field_rules()' rule for the same target.
+struct AttenuatedRule {
+  double min_ratio;
+  double min_kappa_diameter;
+  double max_kappa_diameter;
+  const TriangleRule* rule;
+};
+
+/// The table, cheapest rule first. Built once.
+const std::array<AttenuatedRule, 7>& attenuated_far_field_rules();
+
+/// The rule of the attenuated table for distance ratio η = ratio and κ·diameter, or nullptr
+/// where no row applies.
+inline const TriangleRule* select_attenuated_rule(double ratio, double kappa_diameter) {
+  for (const AttenuatedRule& row : attenuated_far_field_rules())
+    if (ratio >= row.min_ratio && kappa_diameter >= row.min_kappa_diameter &&
+        kappa_diameter <= row.max_kappa_diameter)
+      return row.rule;
+  return nullptr;
+}
+
 /// The two sums a quadrature rule needs for both kernels, G = E(r)/(4πr) with E = 1
 /// (Laplace) or e^{−κr} (Yukawa), so that −G'(r)/r = E(r)(1 + κr)/(4πr³): over points at
 /// distances r_q with weights w_q,
@@ -205,6 +235,23 @@ PanelIntegrals integrate_panel(const Kernel& kernel, const Panel& panel, const E
   if (rule == nullptr)
     return polar_panel_integrals(kernel, panel, x, with_gradients);
   return gauss_panel_integrals(kernel, panel, x, *rule, with_gradients);
+}
+
+/// Yukawa single and double layer of `panel` at x to within kAttenuatedRuleAccuracy of the
+/// Laplace magnitudes at the same distance (AttenuatedRule), no gradients: the cheapest rule
+/// of attenuated_far_field_rules() for the target, integrate_panel where none applies. For
+/// the Galerkin entries, which are judged against their rows' largest entries
+/// (GalerkinOperators, YukawaAttenuation), not against themselves.
+template <class Kernel>
+PanelIntegrals integrate_attenuated_panel(const Kernel& kernel, const Panel& panel,
+                                          const Eigen::Vector3d& x) {
+  static_assert(Kernel::has_exponential_decay, "the attenuated rules are for the Yukawa kernel");
+  const double dist = (x - panel.centroid).norm();
+  const TriangleRule* rule =
+      select_attenuated_rule(dist / panel.diameter, kernel.kappa() * panel.diameter);
+  if (rule == nullptr || dist - panel.radius > kernel.cutoff_distance())
+    return integrate_panel(kernel, panel, x);
+  return gauss_panel_integrals(kernel, panel, x, *rule, false);
 }
 
 /// The single layer alone (the far-field hot path of dense and compressed assembly): same

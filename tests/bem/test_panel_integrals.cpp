@@ -240,6 +240,78 @@ TEST_CASE("far-field rule table: measured errors (prints the table)",
   }
 }
 
+TEST_CASE("integrate_attenuated_panel: within the absolute accuracy of the Laplace magnitude",
+          "[panel_integrals]") {
+  // Targets at ratios and κ·diameter across the attenuated table's windows and off its
+  // calibration grid (three panel shapes, seven directions): V within 1e−9·|T|/(4πr) and K
+  // within 1e−9·|T|/(4πr²) of the adaptive reference, and the cheap rule really is used.
+  int cheap = 0, checked = 0;
+  for (const bem::Panel& p : test_panels())
+    for (const Vector3d& dir : directions(7, 3))
+      for (const double ratio : {1.5, 1.8, 2.2, 2.7, 3.4, 4.5, 7.0})
+        for (const double kd : {0.5, 1.0, 1.7, 2.8, 3.9, 5.5, 8.0}) {
+          const double kappa = kd / p.diameter, r = ratio * p.diameter;
+          const Vector3d x = p.centroid + r * dir;
+          const YukawaKernel kernel(kappa);
+          const auto ref = testing::reference_panel_integrals(kappa, p, x, false, 1e-13);
+          const auto v = bem::integrate_attenuated_panel(kernel, p, x);
+          const double v_scale = p.area / (4 * M_PI * r), k_scale = v_scale / r;
+          CHECK(std::abs(v.single_layer - ref.single_layer) <=
+                bem::kAttenuatedRuleAccuracy * v_scale);
+          CHECK(std::abs(v.double_layer - ref.double_layer) <=
+                bem::kAttenuatedRuleAccuracy * k_scale);
+          const bem::TriangleRule* rule = bem::select_attenuated_rule(ratio, kd);
+          const bem::TriangleRule* standard = bem::select_far_field_rule(ratio, kd);
+          if (rule != nullptr && (standard == nullptr || rule->size() < standard->size()))
+            ++cheap;
+          ++checked;
+        }
+  CHECK(checked == 3 * 7 * 7 * 7);
+  CHECK(cheap > checked / 2);
+}
+
+TEST_CASE(
+    "attenuated Yukawa rules: measured errors against the unattenuated magnitude "
+    "(prints the table)",
+    "[.calibration][panel_integrals]") {
+  // Reproduces the calibration behind attenuated_far_field_rules(): worst error of V and K
+  // of each rule, relative to the Laplace magnitude at the same distance, area/(4πr) and
+  // area/(4πr²), over three panel shapes and 43 directions, per distance ratio and
+  // κ·diameter. That is the scale of the Galerkin rows' largest entries, against which an
+  // attenuated Yukawa entry is judged (YukawaAttenuation::absolute_accuracy).
+  struct Named {
+    const char* name;
+    const bem::TriangleRule* rule;
+  };
+  const std::vector<Named> rules = {
+      {"sym6", &bem::symmetric_triangle_rule(6)}, {"sym8", &bem::symmetric_triangle_rule(8)},
+      {"col5", &bem::collapsed_gauss_rule(5)},    {"col6", &bem::collapsed_gauss_rule(6)},
+      {"col7", &bem::collapsed_gauss_rule(7)},    {"col8", &bem::collapsed_gauss_rule(8)}};
+  for (double kd : {1.0, 1.5, 2.0, 2.5, 3.0, 3.5, 4.0, 5.0, 6.0, 8.0}) {
+    std::cout << "kappa*diameter = " << kd << "\n";
+    for (double ratio : {1.5, 2.0, 2.5, 3.0, 4.0, 6.0}) {
+      std::vector<double> worst(rules.size(), 0.0);
+      for (const bem::Panel& p : test_panels())
+        for (const Vector3d& dir : directions(43, 1)) {
+          const Vector3d x = p.centroid + ratio * p.diameter * dir;
+          const double kappa = kd / p.diameter, r = ratio * p.diameter;
+          const auto ref = testing::reference_panel_integrals(kappa, p, x, false, 1e-13);
+          const double v_scale = p.area / (4 * M_PI * r), k_scale = v_scale / r;
+          for (size_t i = 0; i < rules.size(); ++i) {
+            const auto v =
+                bem::gauss_panel_integrals(YukawaKernel(kappa), p, x, *rules[i].rule, false);
+            worst[i] = std::max({worst[i], std::abs(v.single_layer - ref.single_layer) / v_scale,
+                                 std::abs(v.double_layer - ref.double_layer) / k_scale});
+          }
+        }
+      std::cout << "  ratio " << ratio << ":";
+      for (size_t i = 0; i < rules.size(); ++i)
+        std::cout << " " << rules[i].name << " " << worst[i];
+      std::cout << "\n";
+    }
+  }
+}
+
 TEST_CASE("gauss_panel_integrals: the array evaluation of large rules equals the sum point by point",
           "[panel_integrals]") {
   // Every rule of 12 points or more that far_field_rules() or the attenuated class uses, on
