@@ -32,6 +32,10 @@ constexpr int kZeroRowRetries = 8;
 constexpr int kCheckRows = 3;
 constexpr double kCheckFactor = 10.0;
 
+/// recompress, with the Gram matrices UᵀU and VᵀV when the caller has them (else null).
+LowRankBlock recompress_with_grams(const LowRankBlock& block, double epsilon, FactorBases bases,
+                                   const Eigen::MatrixXd* gram_u, const Eigen::MatrixXd* gram_v);
+
 }  // namespace
 
 std::optional<LowRankBlock> adaptive_cross_approximation(Eigen::Index m, Eigen::Index n,
@@ -45,7 +49,20 @@ std::optional<LowRankBlock> adaptive_cross_approximation(Eigen::Index m, Eigen::
   Eigen::Index k = 0;
   std::vector<bool> used(static_cast<size_t>(m), false);
   Eigen::VectorXd r(n), c(m);
-  double norm2 = 0.0;  // ‖U Vᵀ‖_F²
+  // ‖U Vᵀ‖_F², estimated as Σ_l ‖u_l‖²‖v_l‖²: the cross terms 2 Σ_{l<l'} (u_l·u_l')(v_l·v_l')
+  // are left out, since updating them would cost two more matrix-vector products per step,
+  // as much as the residual updates. It is made exact from the Gram matrices UᵀU and VᵀV
+  // whenever the stopping test is about to pass (`exact_norm2`), so the estimate only
+  // decides when to look. Recompression reuses the last Gram matrices if no cross was added
+  // after them.
+  double norm2 = 0.0;
+  Eigen::MatrixXd gram_u, gram_v;
+  const auto exact_norm2 = [&] {
+    const auto u = U.leftCols(k), v = V.leftCols(k);
+    gram_u.noalias() = u.transpose() * u;
+    gram_v.noalias() = v.transpose() * v;
+    return gram_u.cwiseProduct(gram_v).sum();
+  };
   Eigen::Index pivot_row = 0;
   int zero_rows = 0;
   const auto next_unused = [&](Eigen::Index from) {
@@ -83,15 +100,12 @@ std::optional<LowRankBlock> adaptive_cross_approximation(Eigen::Index m, Eigen::
     }
     V.col(k) = r / r(pivot_col);
     column(pivot_col, c);
-    if (k > 0) {
-      c.noalias() -= U.leftCols(k) * V.row(pivot_col).head(k).transpose();
-      // ‖S_k‖² = ‖S_{k−1}‖² + 2 Σ_l (u_l·u)(v_l·v) + ‖u‖²‖v‖²
-      norm2 += 2.0 * (U.leftCols(k).transpose() * c).dot(V.leftCols(k).transpose() * V.col(k));
-    }
+    if (k > 0) c.noalias() -= U.leftCols(k) * V.row(pivot_col).head(k).transpose();
     U.col(k) = c;
     const double step = c.norm() * V.col(k).norm();
     norm2 += step * step;
     ++k;
+    if (step <= epsilon * std::sqrt(norm2)) norm2 = exact_norm2();
     if (step <= epsilon * std::sqrt(norm2)) {
       // Converged by the estimate: check a few unused rows, spread over the block.
       Eigen::Index failing = -1;
@@ -122,7 +136,10 @@ std::optional<LowRankBlock> adaptive_cross_approximation(Eigen::Index m, Eigen::
   LowRankBlock block;
   block.U = U.leftCols(k);
   block.V = V.leftCols(k);
-  return recompress(block, epsilon);
+  const bool grams_current = gram_u.rows() == k;
+  return recompress_with_grams(block, epsilon, FactorBases::gram_where_conditioned,
+                               grams_current ? &gram_u : nullptr,
+                               grams_current ? &gram_v : nullptr);
 }
 
 namespace {
@@ -186,13 +203,14 @@ class ColumnBasis {
   /// column from the span of those before it, bounds 1/κ from above to within a factor
   /// of k or so. Applies when every diagonal entry is at least `min_pivot` (and F has no
   /// more columns than rows, no zero column); nothing otherwise.
-  static std::optional<ColumnBasis> gram(const Eigen::MatrixXd& f, double min_pivot) {
+  static std::optional<ColumnBasis> gram(const Eigen::MatrixXd& f, double min_pivot,
+                                         const Eigen::MatrixXd* f_gram = nullptr) {
     const Eigen::Index k = f.cols();
     if (k > f.rows()) return std::nullopt;
     const Eigen::VectorXd norms = f.colwise().norm().transpose();
     if (!(norms.minCoeff() > 0.0)) return std::nullopt;
     const Eigen::VectorXd inverse = norms.cwiseInverse();
-    Eigen::MatrixXd gram = f.transpose() * f;
+    Eigen::MatrixXd gram = f_gram != nullptr ? *f_gram : Eigen::MatrixXd(f.transpose() * f);
     gram = inverse.asDiagonal() * gram * inverse.asDiagonal();
     const Eigen::LLT<Eigen::MatrixXd> cholesky(gram);
     if (cholesky.info() != Eigen::Success) return std::nullopt;
@@ -231,12 +249,15 @@ double gram_min_pivot(Eigen::Index k, double epsilon) {
   return std::max(kd * std::sqrt(u / 1e-6), 100.0 * kd * u / epsilon);
 }
 
-/// Gram bases of U's and V's columns, if both apply at tolerance ε.
-std::optional<std::pair<ColumnBasis, ColumnBasis>> gram_bases(const LowRankBlock& block, double epsilon) {
+/// Gram bases of U's and V's columns, if both apply at tolerance ε (from UᵀU and VᵀV where
+/// given).
+std::optional<std::pair<ColumnBasis, ColumnBasis>> gram_bases(
+    const LowRankBlock& block, double epsilon, const Eigen::MatrixXd* gram_u = nullptr,
+    const Eigen::MatrixXd* gram_v = nullptr) {
   const double pivot = gram_min_pivot(block.rank(), epsilon);
-  auto u = ColumnBasis::gram(block.U, pivot);
+  auto u = ColumnBasis::gram(block.U, pivot, gram_u);
   if (!u) return std::nullopt;
-  auto v = ColumnBasis::gram(block.V, pivot);
+  auto v = ColumnBasis::gram(block.V, pivot, gram_v);
   if (!v) return std::nullopt;
   return std::pair{std::move(*u), std::move(*v)};
 }
@@ -248,13 +269,22 @@ bool recompression_uses_gram_bases(const LowRankBlock& block, double epsilon) {
 }
 
 LowRankBlock recompress(const LowRankBlock& block, double epsilon, FactorBases bases) {
+  return recompress_with_grams(block, epsilon, bases, nullptr, nullptr);
+}
+
+namespace {
+
+LowRankBlock recompress_with_grams(const LowRankBlock& block, double epsilon, FactorBases bases,
+                                   const Eigen::MatrixXd* gram_u, const Eigen::MatrixXd* gram_v) {
   const Eigen::Index k = block.rank();
   if (k <= 1) return block;  // rank one is minimal (a zero cross never enters the block)
   // U Vᵀ = Q_u B Q_vᵀ with B = R_u R_vᵀ, from orthonormal bases of U's and V's columns: by
   // their Gram matrices where the columns are well conditioned (ACA's are: each cross
   // vanishes on the pivots before it), two products with U and V instead of two Householder
   // factorisations and their applications; by Householder reflections otherwise.
-  auto gram = bases == FactorBases::gram_where_conditioned ? gram_bases(block, epsilon) : std::nullopt;
+  auto gram = bases == FactorBases::gram_where_conditioned
+                  ? gram_bases(block, epsilon, gram_u, gram_v)
+                  : std::nullopt;
   const ColumnBasis bu = gram ? std::move(gram->first) : ColumnBasis::householder(block.U);
   const ColumnBasis bv = gram ? std::move(gram->second) : ColumnBasis::householder(block.V);
   const Eigen::Index ku = bu.r().rows(), kv = bv.r().rows();
@@ -290,5 +320,7 @@ LowRankBlock recompress(const LowRankBlock& block, double epsilon, FactorBases b
   out.V = bv.times(cv);
   return out;
 }
+
+}  // namespace
 
 }  // namespace bemshape::bem

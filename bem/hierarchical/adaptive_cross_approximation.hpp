@@ -9,7 +9,9 @@
 //   ‖u_k‖·‖v_k‖ ≤ ε·‖U Vᵀ‖_F,
 // the usual estimate of the relative Frobenius error ‖A − U Vᵀ‖_F/‖A‖_F (exact for
 // asymptotically smooth kernels on admissible blocks, where the singular values decay
-// geometrically). Recompression: U = Q_u R_u, V = Q_v R_v (by Cholesky factors of the Gram
+// geometrically). ‖U Vᵀ‖_F is tracked as Σ_l ‖u_l‖²‖v_l‖² and made exact from the Gram
+// matrices UᵀU and VᵀV when the test is about to pass; recompression reuses those Gram
+// matrices. Recompression: U = Q_u R_u, V = Q_v R_v (by Cholesky factors of the Gram
 // matrices where the columns allow, by Householder reflections otherwise), B = R_u R_vᵀ, and
 // the truncated SVD of B: keep the smallest r with (Σ_{i>r} σ_i²)^{1/2} ≤ ε·‖B‖_F. The singular vectors
 // come from the eigenvectors of BᵀB with the truncation measured on B itself (see
