@@ -3,7 +3,9 @@
 // polyhedra, and for invariance under rigid motions.
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <initializer_list>
 #include <iostream>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -47,6 +49,42 @@ std::vector<Vector3d> directions(int count, unsigned seed) {
   while (static_cast<int>(dirs.size()) < count)
     dirs.push_back(Vector3d(normal(rng), normal(rng), normal(rng)).normalized());
   return dirs;
+}
+
+struct NamedRule {
+  const char* name;
+  const bem::TriangleRule* rule;
+};
+
+/// The calibration loop behind a rule table: for each κ·diameter and distance ratio, the
+/// worst of error(reference, rule, panel, x, κ, r) of each rule over three panel shapes and
+/// 43 directions, printed as one line per ratio; reference(panel, x, κ) is computed once per
+/// target for all rules. Cells with κ·(r − 0.6·diameter) above `max_kappa_gap` are skipped
+/// (their entries are cut off to 0).
+template <class Reference, class Error>
+void print_worst_errors(const std::vector<NamedRule>& rules, std::initializer_list<double> kds,
+                        std::initializer_list<double> ratios, double max_kappa_gap,
+                        const Reference& reference, const Error& error) {
+  for (double kd : kds) {
+    std::cout << "kappa*diameter = " << kd << "\n";
+    for (double ratio : ratios) {
+      if (kd * (ratio - 0.6) > max_kappa_gap)
+        continue;
+      std::vector<double> worst(rules.size(), 0.0);
+      for (const bem::Panel& p : test_panels())
+        for (const Vector3d& dir : directions(43, 1)) {
+          const Vector3d x = p.centroid + ratio * p.diameter * dir;
+          const double kappa = kd / p.diameter, r = ratio * p.diameter;
+          const auto ref = reference(p, x, kappa);
+          for (size_t i = 0; i < rules.size(); ++i)
+            worst[i] = std::max(worst[i], error(ref, *rules[i].rule, p, x, kappa, r));
+        }
+      std::cout << "  ratio " << ratio << ":";
+      for (size_t i = 0; i < rules.size(); ++i)
+        std::cout << " " << rules[i].name << " " << worst[i];
+      std::cout << "\n";
+    }
+  }
 }
 
 template <class Kernel>
@@ -200,44 +238,29 @@ TEST_CASE("far-field rule table: measured errors (prints the table)",
   // Reproduces the calibration behind far_field_rules(): worst error of each rule, relative
   // to the entry's natural magnitude area·|G^{(k)}(r)|, over three panel shapes and 43
   // directions, per distance ratio and κ·diameter.
-  struct Named {
-    const char* name;
-    const bem::TriangleRule* rule;
-  };
-  const std::vector<Named> rules = {{"sym2", &bem::symmetric_triangle_rule(2)},
-                                    {"sym5", &bem::symmetric_triangle_rule(5)},
-                                    {"sym6", &bem::symmetric_triangle_rule(6)},
-                                    {"sym8", &bem::symmetric_triangle_rule(8)},
-                                    {"col6", &bem::collapsed_gauss_rule(6)},
-                                    {"col8", &bem::collapsed_gauss_rule(8)}};
-  for (double kd : {0.0, 0.01, 0.3, 0.7, 1.0, 1.5, 2.5, 5.0}) {
-    std::cout << "kappa*diameter = " << kd << "\n";
-    for (double ratio : {1.5, 2.5, 4.0, 6.0, 8.0, 12.0, 20.0, 40.0, 150.0}) {
-      if (kd * (ratio - 0.6) > 40) continue;
-      std::vector<double> worst(rules.size(), 0.0);
-      for (const bem::Panel& p : test_panels())
-        for (const Vector3d& dir : directions(43, 1)) {
-          const Vector3d x = p.centroid + ratio * p.diameter * dir;
-          const double kappa = kd / p.diameter, r = ratio * p.diameter;
-          const auto ref = testing::reference_panel_integrals(kappa, p, x, true, 1e-13);
-          const double e = std::exp(-kappa * r) / (4 * M_PI);
-          const double g0 = e / r, g1 = e * (1 + kappa * r) / (r * r), g2 = g1 * (2 + kappa * r) / r;
-          for (size_t i = 0; i < rules.size(); ++i) {
-            const auto v = kd == 0
-                ? bem::gauss_panel_integrals(LaplaceKernel{}, p, x, *rules[i].rule, true)
-                : bem::gauss_panel_integrals(YukawaKernel(kappa), p, x, *rules[i].rule, true);
-            worst[i] = std::max(
-                {worst[i], std::abs(v.single_layer - ref.single_layer) / (p.area * g0),
-                 std::abs(v.double_layer - ref.double_layer) / (p.area * g1),
-                 (v.single_layer_gradient - ref.single_layer_gradient).norm() / (p.area * g1),
-                 (v.double_layer_gradient - ref.double_layer_gradient).norm() / (p.area * g2)});
-          }
-        }
-      std::cout << "  ratio " << ratio << ":";
-      for (size_t i = 0; i < rules.size(); ++i) std::cout << " " << rules[i].name << " " << worst[i];
-      std::cout << "\n";
-    }
-  }
+  const std::vector<NamedRule> rules = {
+      {"sym2", &bem::symmetric_triangle_rule(2)}, {"sym5", &bem::symmetric_triangle_rule(5)},
+      {"sym6", &bem::symmetric_triangle_rule(6)}, {"sym8", &bem::symmetric_triangle_rule(8)},
+      {"col6", &bem::collapsed_gauss_rule(6)},    {"col8", &bem::collapsed_gauss_rule(8)}};
+  print_worst_errors(
+      rules, {0.0, 0.01, 0.3, 0.7, 1.0, 1.5, 2.5, 5.0},
+      {1.5, 2.5, 4.0, 6.0, 8.0, 12.0, 20.0, 40.0, 150.0}, 40.0,
+      [](const bem::Panel& p, const Vector3d& x, double kappa) {
+        return testing::reference_panel_integrals(kappa, p, x, true, 1e-13);
+      },
+      [](const auto& ref, const bem::TriangleRule& rule, const bem::Panel& p, const Vector3d& x,
+         double kappa, double r) {
+        const double e = std::exp(-kappa * r) / (4 * M_PI);
+        const double g0 = e / r, g1 = e * (1 + kappa * r) / (r * r), g2 = g1 * (2 + kappa * r) / r;
+        const auto v = kappa == 0
+                           ? bem::gauss_panel_integrals(LaplaceKernel{}, p, x, rule, true)
+                           : bem::gauss_panel_integrals(YukawaKernel(kappa), p, x, rule, true);
+        return std::max(
+            {std::abs(v.single_layer - ref.single_layer) / (p.area * g0),
+             std::abs(v.double_layer - ref.double_layer) / (p.area * g1),
+             (v.single_layer_gradient - ref.single_layer_gradient).norm() / (p.area * g1),
+             (v.double_layer_gradient - ref.double_layer_gradient).norm() / (p.area * g2)});
+      });
 }
 
 TEST_CASE("integrate_attenuated_panel: within the absolute accuracy of the Laplace magnitude",
@@ -279,41 +302,28 @@ TEST_CASE(
   // area/(4πr²), over three panel shapes and 43 directions, per distance ratio and
   // κ·diameter. That is the scale of the Galerkin rows' largest entries, against which an
   // attenuated Yukawa entry is judged (YukawaAttenuation::absolute_accuracy).
-  struct Named {
-    const char* name;
-    const bem::TriangleRule* rule;
-  };
-  const std::vector<Named> rules = {
+  const std::vector<NamedRule> rules = {
       {"sym6", &bem::symmetric_triangle_rule(6)}, {"sym8", &bem::symmetric_triangle_rule(8)},
       {"col5", &bem::collapsed_gauss_rule(5)},    {"col6", &bem::collapsed_gauss_rule(6)},
       {"col7", &bem::collapsed_gauss_rule(7)},    {"col8", &bem::collapsed_gauss_rule(8)}};
-  for (double kd : {1.0, 1.5, 2.0, 2.5, 3.0, 3.5, 4.0, 5.0, 6.0, 8.0}) {
-    std::cout << "kappa*diameter = " << kd << "\n";
-    for (double ratio : {1.5, 2.0, 2.5, 3.0, 4.0, 6.0}) {
-      std::vector<double> worst(rules.size(), 0.0);
-      for (const bem::Panel& p : test_panels())
-        for (const Vector3d& dir : directions(43, 1)) {
-          const Vector3d x = p.centroid + ratio * p.diameter * dir;
-          const double kappa = kd / p.diameter, r = ratio * p.diameter;
-          const auto ref = testing::reference_panel_integrals(kappa, p, x, false, 1e-13);
-          const double v_scale = p.area / (4 * M_PI * r), k_scale = v_scale / r;
-          for (size_t i = 0; i < rules.size(); ++i) {
-            const auto v =
-                bem::gauss_panel_integrals(YukawaKernel(kappa), p, x, *rules[i].rule, false);
-            worst[i] = std::max({worst[i], std::abs(v.single_layer - ref.single_layer) / v_scale,
-                                 std::abs(v.double_layer - ref.double_layer) / k_scale});
-          }
-        }
-      std::cout << "  ratio " << ratio << ":";
-      for (size_t i = 0; i < rules.size(); ++i)
-        std::cout << " " << rules[i].name << " " << worst[i];
-      std::cout << "\n";
-    }
-  }
+  print_worst_errors(
+      rules, {1.0, 1.5, 2.0, 2.5, 3.0, 3.5, 4.0, 5.0, 6.0, 8.0}, {1.5, 2.0, 2.5, 3.0, 4.0, 6.0},
+      std::numeric_limits<double>::infinity(),
+      [](const bem::Panel& p, const Vector3d& x, double kappa) {
+        return testing::reference_panel_integrals(kappa, p, x, false, 1e-13);
+      },
+      [](const auto& ref, const bem::TriangleRule& rule, const bem::Panel& p, const Vector3d& x,
+         double kappa, double r) {
+        const double v_scale = p.area / (4 * M_PI * r), k_scale = v_scale / r;
+        const auto v = bem::gauss_panel_integrals(YukawaKernel(kappa), p, x, rule, false);
+        return std::max(std::abs(v.single_layer - ref.single_layer) / v_scale,
+                        std::abs(v.double_layer - ref.double_layer) / k_scale);
+      });
 }
 
-TEST_CASE("gauss_panel_integrals: the array evaluation of large rules equals the sum point by point",
-          "[panel_integrals]") {
+TEST_CASE(
+    "gauss_panel_integrals: the array evaluation of large rules equals the sum point by point",
+    "[panel_integrals]") {
   // Every rule of 12 points or more that far_field_rules() or the attenuated class uses, on
   // three panel shapes and targets in several directions and distances; the reference is
   // the definition Σ w_q G(r_q) and Σ w_q ∂G/∂n_y written out here with the kernels' scalar
