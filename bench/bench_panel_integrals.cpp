@@ -28,6 +28,12 @@ namespace {
 using namespace bemshape;
 using Clock = std::chrono::steady_clock;
 
+/// One line of the throughput table.
+void print_throughput(const char* name, long count, double seconds, double checksum) {
+  std::printf("%-34s %10ld entries  %7.3f s  %8.2e entries/s  (checksum %.12g)\n", name, count,
+              seconds, count / seconds, checksum);
+}
+
 template <class F>
 void measure(const char* name, const std::vector<bem::Panel>& panels, F&& entry) {
   const auto n = panels.size();
@@ -44,8 +50,7 @@ void measure(const char* name, const std::vector<bem::Panel>& panels, F&& entry)
     }
   }
   const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
-  std::printf("%-34s %10ld entries  %7.3f s  %8.2e entries/s  (checksum %.12g)\n", name, count,
-              seconds, count / seconds, checksum);
+  print_throughput(name, count, seconds, checksum);
 }
 
 /// Entries per second of the assembly's own far-field path, laplace_far_field_lanes: each
@@ -71,8 +76,7 @@ void measure_far_field_lanes(const std::vector<bem::Panel>& panels) {
     }
   }
   const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
-  std::printf("%-34s %10ld entries  %7.3f s  %8.2e entries/s  (checksum %.12g)\n",
-              "Laplace far-field lanes (V and K)", count, seconds, count / seconds, checksum);
+  print_throughput("Laplace far-field lanes (V and K)", count, seconds, checksum);
 }
 
 /// The panel measure_rule integrates over: a scalene triangle, slightly tilted.
