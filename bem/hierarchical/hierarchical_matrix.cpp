@@ -341,7 +341,11 @@ HierarchicalMatrix::GroupedColumns HierarchicalMatrix::group_columns(
     Eigen::MatrixXd& mine = partial[static_cast<size_t>(omp_get_thread_num())];
     mine = Eigen::MatrixXd::Zero(groups, g * groups);
     Eigen::MatrixXd left;
-#pragma omp for schedule(dynamic, 16)
+    // A static schedule: each thread sums the same blocks into `mine` on every run, so the
+    // grouped sums (the coarse matrix) are the same to the last bit for a given thread count.
+    // A dynamic one made them, and with them the solution, differ between runs in the
+    // ninth digit.
+#pragma omp for schedule(static, 16)
     for (std::size_t k = 0; k < blocks_.size(); ++k) {
       const Block& b = blocks_[k];
       const Eigen::Index m = b.row_end - b.row_begin, n = b.col_end - b.col_begin;
