@@ -62,7 +62,8 @@ inline Lanes from_register(__m256d v) {
 template <class T>
 inline Lanes widen(const T* from) {
 #if defined(__AVX2__) && !defined(__AVX512F__)
-  if constexpr (std::is_same_v<T, float>) return from_register(_mm256_cvtps_pd(_mm_loadu_ps(from)));
+  if constexpr (std::is_same_v<T, float>)
+    return from_register(_mm256_cvtps_pd(_mm_loadu_ps(from)));
 #endif
   if constexpr (!std::is_integral_v<T>) {
     typedef T Stored __attribute__((vector_size(kLanes * sizeof(T))));
@@ -91,7 +92,8 @@ inline Lanes widen(const T* from) {
 #else
     typedef std::int32_t Wide __attribute__((vector_size(kLanes * sizeof(std::int32_t))));
     Wide w;
-    for (int i = 0; i < kLanes; ++i) w[i] = from[i];
+    for (int i = 0; i < kLanes; ++i)
+      w[i] = from[i];
     return __builtin_convertvector(w, Lanes);
 #endif
   }

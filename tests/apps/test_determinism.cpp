@@ -59,7 +59,8 @@ TEST_CASE("thickness: same input and threads give bit-identical files, 1 vs 2 th
 // The hierarchical-matrix path on a cylinder of 3310 faces (after refinement): admissible
 // blocks, the coarse space and GMRES all take part. Its coarse matrix once summed the blocks
 // per thread in the order a dynamic schedule gave, and two runs differed in the ninth digit.
-TEST_CASE("thickness --solver hmatrix: same threads give bit-identical files, 1 vs 2 threads 1e-10") {
+TEST_CASE(
+    "thickness --solver hmatrix: same threads give bit-identical files, 1 vs 2 threads 1e-10") {
   const std::string cylinder = std::string(BEMSHAPE_TEST_DATA_DIR) + "/meshes/cylinder.stl";
   const auto run = [&](int threads, const std::string& tag) {
     const std::string csv = scratch(tag + ".csv");
