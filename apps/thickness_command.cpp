@@ -102,6 +102,9 @@ struct ThicknessResult {
   Eigen::VectorXd solver_face;  // selected thickness per solver face
   ThicknessStatistics statistics;
   std::vector<ThinRegion> regions;
+  /// Solver faces whose thickness h0(1/f − a) came out negative and was clamped to 0
+  /// (features/thickness.hpp): f above 1/a, which only discretisation error produces.
+  Eigen::Index clamped_faces() const { return (solver_face.array() == 0.0).count(); }
 };
 
 /// Writes `v` (features on `mesh`) to `path` in `format`.
@@ -224,7 +227,8 @@ nlohmann::json report_json(const ThicknessOptions& options, double h0, const Bou
         {"p95", s.p95},
         {"min_location", vec(s.min_location)},
         {"measured_area", s.measured_area},
-        {"unmeasurable_area", s.unmeasurable_area}}},
+        {"unmeasurable_area", s.unmeasurable_area},
+        {"clamped_faces", result.clamped_faces()}}},
       {"check", check},
       {"solver",
        {{"method", run.solution.report.method},
@@ -267,6 +271,12 @@ void print_report(std::ostream& out, const ThicknessOptions& options, double h0,
     out << "               not measurable (no opposite wall within reach of h0) on area "
         << number_text(s.unmeasurable_area, 6) << " of "
         << number_text(s.unmeasurable_area + s.measured_area, 6) << '\n';
+  if (const Eigen::Index clamped = result.clamped_faces(); clamped > 0)
+    out << "  warning      thickness clamped to 0 on " << clamped << " solver face"
+        << (clamped == 1 ? "" : "s") << ", where the inverse thickness exceeded 1/a:\n"
+        << "               only discretisation error produces that. The solver mesh is probably\n"
+        << "               too coarse for h0 there; try a smaller --max-edge, or an h0 nearer\n"
+        << "               the walls' thickness\n";
   if (options.min_thickness) {
     const double threshold = *options.min_thickness;
     if (result.regions.empty()) {

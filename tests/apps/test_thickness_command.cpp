@@ -383,6 +383,34 @@ TEST_CASE(
   CHECK(report["thickness"]["min"].get<double>() == minimum);  // same run, same numbers
 }
 
+TEST_CASE("thickness clamped to 0: warned and counted exactly when the minimum is 0") {
+  // The cylinder of diameter 2 at --h0 4: the default element size 1.2 is coarse for its
+  // curvature, and a few side faces get an inverse thickness above 1/a. At --max-edge 0.6 none
+  // do. The count must be the solver faces the report's minimum comes from, so the warning
+  // and clamped_faces appear exactly when the minimum is 0.
+  const std::string cylinder = data + "/meshes/cylinder.stl";
+  const auto run = [&](const std::string& options, const std::string& tag) {
+    const std::string json = scratch(tag + ".json");
+    const Run r =
+        run_bemshape("thickness '" + cylinder + "' --h0 4" + options + " --report '" + json + "'");
+    CAPTURE(r.out, r.err);
+    REQUIRE(r.exit_code == 0);
+    return std::pair{r.out, read_json(json)};
+  };
+  const auto [coarse_out, coarse] = run("", "clamp_coarse");
+  CHECK(coarse["thickness"]["min"].get<double>() == 0.0);
+  CHECK(coarse["thickness"]["clamped_faces"].get<long>() > 0);
+  CHECK(coarse["thickness"]["clamped_faces"].get<long>() < 10);
+  CHECK_THAT(coarse_out,
+             Catch::Contains("warning      thickness clamped to 0 on " +
+                             std::to_string(coarse["thickness"]["clamped_faces"].get<long>()) +
+                             " solver face"));
+  const auto [fine_out, fine] = run(" --max-edge 0.6", "clamp_fine");
+  CHECK(fine["thickness"]["min"].get<double>() > 0.5);
+  CHECK(fine["thickness"]["clamped_faces"].get<long>() == 0);
+  CHECK_THAT(fine_out, !Catch::Contains("clamped"));
+}
+
 TEST_CASE("solver hmatrix: the same thickness as --solver dense, GMRES reported in the JSON") {
   const std::string mesh = ball_file(0.12, "solver_ball.stl");
   const auto solve = [&](const std::string& solver) {
