@@ -36,6 +36,25 @@ std::string small_ball() {
   return path;
 }
 
+/// Runs `command` (a bemshape command line without --threads and -o) twice with 2 threads and
+/// once with 1, each writing a CSV: the two 2-thread files must be identical and the 1-thread
+/// one within kThreadAgreement of them.
+void check_csv_determinism(const std::string& command, const std::string& tag) {
+  const auto run = [&](int threads, const std::string& suffix) {
+    const std::string csv = scratch(tag + suffix + ".csv");
+    const Run r = run_bemshape(command + " --threads " + std::to_string(threads) + " --quiet -o '" +
+                               csv + "'");
+    CAPTURE(r.err);
+    REQUIRE(r.exit_code == 0);
+    return slurp(csv);
+  };
+  const std::string first = run(2, "_a"), second = run(2, "_b"), single = run(1, "_c");
+  CHECK(first == second);
+  const double deviation = column_deviation(parse_csv(first), parse_csv(single));
+  CAPTURE(deviation);
+  CHECK(deviation <= kThreadAgreement);
+}
+
 }  // namespace
 
 TEST_CASE("thickness: same input and threads give bit-identical files, 1 vs 2 threads agree to 1e-10") {
@@ -62,35 +81,12 @@ TEST_CASE("thickness: same input and threads give bit-identical files, 1 vs 2 th
 TEST_CASE(
     "thickness --solver hmatrix: same threads give bit-identical files, 1 vs 2 threads 1e-10") {
   const std::string cylinder = std::string(BEMSHAPE_TEST_DATA_DIR) + "/meshes/cylinder.stl";
-  const auto run = [&](int threads, const std::string& tag) {
-    const std::string csv = scratch(tag + ".csv");
-    const Run r = run_bemshape("thickness '" + cylinder + "' --h0 2 --solver hmatrix --threads " +
-                               std::to_string(threads) + " --quiet -o '" + csv + "'");
-    CAPTURE(r.err);
-    REQUIRE(r.exit_code == 0);
-    return slurp(csv);
-  };
-  const std::string first = run(2, "hdet_a"), second = run(2, "hdet_b"), single = run(1, "hdet_c");
-  CHECK(first == second);
-  const double deviation = column_deviation(parse_csv(first), parse_csv(single));
-  CAPTURE(deviation);
-  CHECK(deviation <= kThreadAgreement);
+  check_csv_determinism("thickness '" + cylinder + "' --h0 2 --solver hmatrix", "hdet");
 }
 
 TEST_CASE("features --grid: same threads bit-identical, 1 vs 2 threads 1e-10") {
-  const auto run = [](int threads, const std::string& tag) {
-    const std::string csv = scratch(tag + ".csv");
-    const Run r = run_bemshape("features '" + small_ball() + "' --h0 0.3 --max-edge 0.12 --grid 0.15" +
-                               " --threads " + std::to_string(threads) + " --quiet -o '" + csv + "'");
-    CAPTURE(r.err);
-    REQUIRE(r.exit_code == 0);
-    return slurp(csv);
-  };
-  const std::string first = run(2, "feat_a"), second = run(2, "feat_b"), single = run(1, "feat_c");
-  CHECK(first == second);
-  const double deviation = column_deviation(parse_csv(first), parse_csv(single));
-  CAPTURE(deviation);
-  CHECK(deviation <= kThreadAgreement);
+  check_csv_determinism("features '" + small_ball() + "' --h0 0.3 --max-edge 0.12 --grid 0.15",
+                        "feat");
 }
 
 TEST_CASE("fem on a PNG: same threads give a bit-identical .vti") {
