@@ -217,6 +217,24 @@ void run_features(const FeaturesOptions& options, int& exit_code) {
       output::write_csv(options.output, header, rows);
   });
   display.finish();
+  // h_f and h_p are clamped to 0 where the inverse thickness exceeds 1/a
+  // (features/thickness.hpp): a wall thinner than zero, which only the discretisation
+  // produces. Counted so that a 0 in the output is not taken for a measured wall.
+  Eigen::Index clamped = 0;
+  for (Eigen::Index p = 0; p < np; ++p)
+    if (field.inside[static_cast<std::size_t>(p)] && (f.h_f(p) == 0.0 || f.h_p(p) == 0.0))
+      ++clamped;
+  const auto warn_clamped = [&](std::ostream& out) {
+    if (clamped == 0)
+      return;
+    out << "  warning      h_f or h_p clamped to 0 at " << clamped << " inside point"
+        << (clamped == 1 ? "" : "s") << ", where the inverse thickness exceeded 1/a:\n"
+        << "               only discretisation error produces that (points within about an\n"
+        << "               element of the surface, or h0 far above the walls' thickness); try a\n"
+        << "               smaller --max-edge, or an h0 nearer the walls' thickness\n";
+  };
+  if (options.output.empty())
+    warn_clamped(std::cerr);  // stdout holds the CSV
   if (!options.output.empty()) {
     const auto inside_count = static_cast<long long>(inside.sum());
     std::cout << "bemshape features: " << options.input << "  (lengths in the input file's units)\n"
@@ -235,6 +253,7 @@ void run_features(const FeaturesOptions& options, int& exit_code) {
       std::cout << ' ' << stage << ' ' << number_text(seconds, 4) << " s,";
     std::cout << " total " << number_text(times.elapsed(), 4) << " s\n"
               << "  output       " << options.output << '\n';
+    warn_clamped(std::cout);
   }
   exit_code = kExitSuccess;
 }

@@ -61,6 +61,43 @@ TEST_CASE("features --points on the ball: f_h within 1 % of 0.801142, s = A·x, 
       run_bemshape("features '" + mesh + "' --points '" + points + "' --h0 0.3 --quiet");
   REQUIRE(to_stdout.exit_code == 0);
   CHECK(parse_csv(to_stdout.out).rows == table.rows);
+  CHECK_THAT(r.out + to_stdout.err, !Catch::Contains("clamped"));  // f_h ≈ 0.8 < 1/a = 5
+}
+
+TEST_CASE("features: points where h_f or h_p is clamped to 0 are counted in a warning") {
+  // The cylinder of diameter 2 at --h0 40, twenty times its radius: near the side wall the
+  // inverse thickness exceeds 1/a = 5 and the thickness h0(1/f − a) is clamped to 0. The
+  // warning's count must be the inside rows of the output with h_f or h_p at 0, on stdout's
+  // summary with -o, on stderr when the table goes to stdout.
+  const std::string cylinder = std::string(BEMSHAPE_TEST_DATA_DIR) + "/meshes/cylinder.stl";
+  const std::string points = scratch("clamp_points.csv");
+  {
+    std::ofstream out(points);
+    out << "x,y,z\n";
+    for (const double r : {0.0, 0.5, 0.9, 0.97, 0.99})
+      for (int k = 0; k < 4; ++k)
+        out << r * std::cos(k * M_PI / 2) << ',' << r * std::sin(k * M_PI / 2) << ",0.5\n";
+  }
+  const std::string csv = scratch("clamp.csv");
+  const std::string command = "features '" + cylinder + "' --points '" + points + "' --h0 40";
+  const Run r = run_bemshape(command + " -o '" + csv + "' --quiet");
+  CAPTURE(r.out, r.err);
+  REQUIRE(r.exit_code == 0);
+  const CsvTable table = parse_csv(slurp(csv));
+  long clamped = 0;
+  for (Eigen::Index p = 0; p < table.rows.rows(); ++p)
+    if (table.rows(p, table.column("inside")) == 1.0 &&
+        (table.rows(p, table.column("h_f")) == 0.0 || table.rows(p, table.column("h_p")) == 0.0))
+      ++clamped;
+  CHECK(clamped > 0);
+  CHECK(clamped < table.rows.rows());  // the axis is far enough from the wall
+  const std::string warning =
+      "warning      h_f or h_p clamped to 0 at " + std::to_string(clamped) + " inside point";
+  CHECK_THAT(r.out, Catch::Contains(warning));
+  const Run to_stdout = run_bemshape(command + " --quiet");
+  REQUIRE(to_stdout.exit_code == 0);
+  CHECK_THAT(to_stdout.err, Catch::Contains(warning));
+  CHECK(parse_csv(to_stdout.out).rows == table.rows);
 }
 
 TEST_CASE("features --grid: VTI over the bounding box, the same values as the CSV") {
