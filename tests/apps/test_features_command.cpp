@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <fstream>
+#include <numbers>
 
 #include "geometry/primitive_meshes.hpp"
 #include "tests/apps/bemshape_runner.hpp"
@@ -65,7 +66,7 @@ TEST_CASE("features --points on the ball: f_h within 1 % of 0.801142, s = A·x, 
 }
 
 TEST_CASE("features: points where h_f or h_p is clamped to 0 are counted in a warning") {
-  // The cylinder of diameter 2 at --h0 40, twenty times its radius: near the side wall the
+  // The cylinder of diameter 2 at --h0 40, forty times its radius: near the side wall the
   // inverse thickness exceeds 1/a = 5 and the thickness h0(1/f − a) is clamped to 0. The
   // warning's count must be the inside rows of the output with h_f or h_p at 0, on stdout's
   // summary with -o, on stderr when the table goes to stdout.
@@ -76,7 +77,8 @@ TEST_CASE("features: points where h_f or h_p is clamped to 0 are counted in a wa
     out << "x,y,z\n";
     for (const double r : {0.0, 0.5, 0.9, 0.97, 0.99})
       for (int k = 0; k < 4; ++k)
-        out << r * std::cos(k * M_PI / 2) << ',' << r * std::sin(k * M_PI / 2) << ",0.5\n";
+        out << r * std::cos(k * std::numbers::pi / 2) << ','
+            << r * std::sin(k * std::numbers::pi / 2) << ",0.5\n";
   }
   const std::string csv = scratch("clamp.csv");
   const std::string command = "features '" + cylinder + "' --points '" + points + "' --h0 40";
