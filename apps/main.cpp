@@ -33,6 +33,7 @@ int main(int argc, char** argv) {
   using namespace bemshape;
   restart_with_heap_huge_pages(argv);  // once, before anything is allocated: 2 MB heap pages
   retain_freed_heap_memory();  // the solvers' temporaries are reused, not page-faulted again
+  pad_heap_growth();           // the assembly threads' heaps get huge pages too
   CLI::App app{
       "bemshape: local wall thickness, orientation and skeleton of solid parts given as closed "
       "triangle meshes (STL, OBJ, OFF, PLY). Lengths are in the units of the input file."};

@@ -515,6 +515,7 @@ int nested_bases(int argc, char** argv) {
 int benchmark(int argc, char** argv) {
   bemshape::restart_with_heap_huge_pages(argv);  // as the bemshape executable does
   bemshape::retain_freed_heap_memory();
+  bemshape::pad_heap_growth();
   if (argc == 3 && std::string(argv[1]) == "entry-costs") return entry_costs(std::atof(argv[2]));
   if (argc >= 2 && std::string(argv[1]) == "interior") return interior(argc, argv);
   if (argc >= 2 && std::string(argv[1]) == "nested-bases") return nested_bases(argc, argv);
