@@ -100,8 +100,8 @@ std::uint64_t hmatrix_solver_memory_estimate(Eigen::Index faces, std::uint64_t e
                  : YukawaNearField<double>::bytes_for(exterior_pairs, exterior_runs, faces));
   const double preconditioner =
       double(ClusterBlockPreconditioner::bytes_for(faces, options.preconditioner_block));
-  // The coarse space: A_c and its LU for at most kMaxClusters clusters (A E's factors are
-  // small beside the preconditioner's).
+  // The coarse space: A_c and its LU for at most kMaxClusters clusters, both held while the
+  // LU is computed (only the LU is kept; A E's factors are small beside the preconditioner's).
   const double clusters = options.coarse_cluster > 0
                               ? std::min(double(ClusterCoarseSpace::kMaxClusters),
                                          n / (0.5 * double(options.coarse_cluster)))

@@ -34,7 +34,7 @@
 // to that accuracy: M is a slightly different fixed linear preconditioner, and GMRES
 // converges to the same solution. Measured on the 28596-face remeshed box: 23 iterations
 // with A E in 6, 8 or 16 bits or in double precision. O(storage) work to build, 32·m² bytes
-// for A_c and its LU, and about one byte per row of each block for A E.
+// for the LU of A_c, and about one byte per row of each block for A E.
 
 #include <cstdint>
 #include <vector>
@@ -87,9 +87,10 @@ class ClusterCoarseSpace {
   Eigen::Index clusters() const { return clusters_; }
   /// cluster_of()[p]: the coarse cluster of the panel at tree position p (nondecreasing).
   const std::vector<Eigen::Index>& cluster_of() const { return cluster_of_; }
-  /// A_c, rows and columns (φ of clusters 1 … m, q of clusters 1 … m).
-  const Eigen::MatrixXd& matrix() const { return matrix_; }
-  /// Bytes held (A_c, its LU, A E).
+  /// A_c, rows and columns (φ of clusters 1 … m, q of clusters 1 … m), multiplied back from
+  /// its LU (only the LU is kept), so to rounding.
+  Eigen::MatrixXd matrix() const { return lu_.reconstructedMatrix(); }
+  /// Bytes held (the LU of A_c, A E).
   std::uint64_t bytes() const;
 
  private:
@@ -99,7 +100,6 @@ class ClusterCoarseSpace {
   HierarchicalMatrix::GroupedColumns laplace_grouped_;  // [−K0 | V0] E
   SparseRowMatrix yukawa_grouped_;                      // [−Kκ | Vκ] (E ⊕ E), N × 2m
   Eigen::VectorXd half_mass_;
-  Eigen::MatrixXd matrix_;
   Eigen::PartialPivLU<Eigen::MatrixXd> lu_;
 };
 
