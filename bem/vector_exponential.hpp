@@ -18,7 +18,8 @@
 // docs/benchmarks.md, eleventh session).
 //
 // Without AVX2 and FMA, and with AVX-512 (where Eigen's exponential runs on eight lanes and
-// was measured as is), this is Eigen's own `exp`.
+// was measured as is), this is Eigen's own `exp`, which clamps x below at about −709.4: there
+// e^x for x < −708 is not 0 but at most e^−708 as well, as negligible to the kernels.
 
 #include <cmath>
 

@@ -43,14 +43,17 @@ TEST_CASE("vector_exp: exact and limiting values, short arrays, fixed sizes, exp
   Eigen::Array<double, 8, 1> x;
   x << 0.0, -708.5, -inf, nan, 1.0, -1.0, 709.0, -745.0;
   const Eigen::Array<double, 8, 1> e = vector_exp<Eigen::Array<double, 8, 1>>(x);
+  // Below −708: 0 with the AVX2 scheme; Eigen's own exp (AVX-512 and plain builds) clamps
+  // at about −709.4 instead and returns e^max(x, −709.4). Either is below e^−708 ≈ 3.3e−308.
+  const auto negligible = [](double v) { return v >= 0.0 && v <= std::exp(-708.0); };
   CHECK(e(0) == 1.0);
-  CHECK(e(1) == 0.0);  // below −708: 0
-  CHECK(e(2) == 0.0);
+  CHECK(negligible(e(1)));
+  CHECK(negligible(e(2)));
   CHECK(std::isnan(e(3)));
   CHECK(relative_error(e(4), 1.0) < 6e-16);
   CHECK(relative_error(e(5), -1.0) < 6e-16);
   CHECK(relative_error(e(6), 709.0) < 6e-16);
-  CHECK(e(7) == 0.0);
+  CHECK(negligible(e(7)));
   // Every length from 1 to 9, as a dynamic array with a fixed maximum (the quadrature's
   // chunks) and from an expression: the same values lane for lane as the whole array's.
   using Chunk = Eigen::Array<double, Eigen::Dynamic, 1, 0, 16, 1>;
