@@ -24,16 +24,15 @@
 //
 // The marking reaches only what is mapped read-write when glibc marks it. A worker thread's
 // heap (an arena of at most 64 MiB, reserved inaccessible) is made read-write as it grows, by
-// as much as each request needs, and with glibc 2.36 only its first part ends up marked
-// (the fault counts below say so), so the operator blocks the assembly threads allocate kept
-// 4 kB pages: most of the 0.37 million faults on that box
-// were theirs. pad_heap_growth() sets glibc's top pad (M_TOP_PAD) to those 64 MiB, so a new
-// thread heap is made read-write and marked whole when it is created, and the main heap
-// grows in the same steps. Nothing is committed by that: pages are still taken as they are
-// first written. On the same box, two pairs of runs back to back (docs/benchmarks.md,
-// fifteenth session): page faults 0.38–0.65 million → 4500, run 60.2–61.9 s → 48.6–49.7 s,
-// the same peak; the interior product of the solve took 10.1 s → 5.5 s, its blocks now read
-// through huge-page translations.
+// as much as each request needs, and with glibc 2.36 only its first part ends up marked (the
+// fault counts below say so), so the operator blocks and workspaces of the assembly threads
+// kept 4 kB pages: most of the faults left on that box were theirs. pad_heap_growth() sets
+// glibc's top pad (M_TOP_PAD) to those 64 MiB, so a new thread heap is made read-write and
+// marked whole when it is created, and the main heap grows in the same steps. Nothing is
+// committed by that: pages are still taken as they are first written. On the same box, three
+// pairs of runs back to back (docs/benchmarks.md, fifteenth session): page faults 0.34–0.65
+// million → about 4500, run 60.2–63.3 s → 48.6–51.8 s, the same peak; the solve's interior
+// product took 10.1–12.0 s → 5.5–7.0 s, its blocks now read through huge-page translations.
 //
 // The executables call both (apps/main.cpp, bench/); the library never does.
 
