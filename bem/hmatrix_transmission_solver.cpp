@@ -1,16 +1,18 @@
 #include "bem/hmatrix_transmission_solver.hpp"
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cmath>
 #include <optional>
-#include <type_traits>
 #include <sstream>
 #include <string>
+#include <type_traits>
 
 #include "bem/hierarchical/galerkin_block_generator.hpp"
 #include "bem/hierarchical/gmres.hpp"
 #include "bem/hierarchical/hierarchical_matrix.hpp"
+#include "bem/hierarchical/nested_far_field.hpp"
 #include "bem/hierarchical/yukawa_near_field.hpp"
 #include "bem/laplace_kernel.hpp"
 #include "bem/panel.hpp"
@@ -30,6 +32,14 @@ double seconds_since(Clock::time_point start) {
 /// Typical rank of an admissible Laplace block at ε = 1e−8 (measured: 6–20), used only by
 /// the memory estimate.
 constexpr double kTypicalRank = 16.0;
+
+/// With the far field nested (H²): bytes per face and level of the blocks left as factors
+/// (small clusters), the bases' typical rank, and the couplings' bytes per face and level
+/// above nested_min_cluster. Measured on spheres of 100820 and … faces (docs/benchmarks.md):
+/// used only by the memory estimate.
+constexpr double kSmallBlockBytes = 1400.0;
+constexpr double kTypicalNestedRank = 100.0;
+constexpr double kNestedCouplingBytes = 80.0;
 
 using RowMajorRows = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
@@ -78,7 +88,8 @@ RowMajorRows sparse_rows_product(const YukawaNearField<Scalar>& y, const RowMajo
 
 std::uint64_t hmatrix_solver_memory_estimate(Eigen::Index faces, std::uint64_t exterior_pairs,
                                              std::uint64_t exterior_runs,
-                                             const HMatrixSolverOptions& options) {
+                                             const HMatrixSolverOptions& options,
+                                             HMatrixSolverOptions::FarField far_field) {
   const double n = double(faces);
   // Near field: each leaf meets O(1) leaves densely (measured on a sphere: 30 at η = 1, 20
   // at η = 2, 16 at η = 4, ≈ 30·η^−0.45) → 2 · that · leaf entries per row; low rank:
@@ -91,8 +102,20 @@ std::uint64_t hmatrix_solver_memory_estimate(Eigen::Index faces, std::uint64_t e
   const double near_leaves = 30.0 * std::pow(std::max(options.eta, 1.0), -0.45);
   const double entry_bytes = options.single_precision ? 4.0 : 8.0;
   const double factor_bytes = options.single_precision ? 2.5 : 8.0;
-  const double laplace = n * (entry_bytes * 2.0 * near_leaves * leaf +
-                              factor_bytes * levels * 6.0 * 3.0 * kTypicalRank);
+  double far = factor_bytes * levels * 6.0 * 3.0 * kTypicalRank;
+  if (far_field == HMatrixSolverOptions::FarField::nested) {
+    // The blocks below nested_min_cluster as factors, on the levels from the leaves to it;
+    // the H² part: bases of rank ≈ kTypicalNestedRank on both sides (1 + 2 rows per panel, 4
+    // bytes each) and couplings on the levels above (measured per level and face:
+    // kNestedCouplingBytes).
+    const double small_levels =
+        std::clamp(std::log2(double(options.nested_min_cluster) / leaf), 0.0, levels);
+    far = kSmallBlockBytes * small_levels +
+          (levels > small_levels
+               ? 3.0 * 4.0 * kTypicalNestedRank + kNestedCouplingBytes * (levels - small_levels)
+               : 0.0);
+  }
+  const double laplace = n * (entry_bytes * 2.0 * near_leaves * leaf + far);
   // Yukawa: written in place, its values in the factors' precision.
   const double yukawa =
       double(options.single_precision
@@ -134,19 +157,69 @@ BoundarySolution solve_transmission_hmatrix(const geometry::SurfaceMesh& mesh,
   const YukawaNearFieldRows exterior_rows =
       yukawa_near_field_rows(panels, tree, parameters.kappa, negligible);
   const double count_seconds = seconds_since(count_start);
-  require_memory(hmatrix_solver_memory_estimate(n, std::uint64_t(exterior_rows.pairs.sum()),
-                                                std::uint64_t(exterior_rows.runs.sum()), options),
+  using FarField = HMatrixSolverOptions::FarField;
+  const auto estimate = [&](FarField far_field) {
+    return hmatrix_solver_memory_estimate(n, std::uint64_t(exterior_rows.pairs.sum()),
+                                          std::uint64_t(exterior_rows.runs.sum()), options,
+                                          far_field);
+  };
+  FarField far_field = options.far_field;
+  if (far_field == FarField::automatic) {
+    const std::uint64_t budget = memory_budget_bytes(options.max_memory_bytes);
+    far_field =
+        budget == 0 || estimate(FarField::hmatrix) <= budget ? FarField::hmatrix : FarField::nested;
+  }
+  require_memory(estimate(far_field),
                  "the hierarchical-matrix BEM system of " + std::to_string(n) + " faces",
                  "use a coarser mesh (larger --max-edge)", options.max_memory_bytes);
 
   report_progress(progress, "assemble", 0.0);
   const auto interior_start = Clock::now();
+  // The blocks of the H² part: between clusters of at least nested_min_cluster panels, and
+  // not inside one preconditioner block (the preconditioner reads its blocks from the
+  // H-matrix, HierarchicalMatrix::diagonal_blocks).
+  BlockPartition partition = partition_blocks(tree, options.eta);
+  std::vector<BlockIndex> nested_blocks;
+  if (far_field == FarField::nested) {
+    std::vector<int> range(tree.clusters().size(), -1);
+    const std::vector<int> ranges = tree.clusters_up_to(options.preconditioner_block);
+    for (std::size_t r = 0; r < ranges.size(); ++r) {
+      std::vector<int> stack{ranges[r]};
+      while (!stack.empty()) {
+        const int c = stack.back();
+        stack.pop_back();
+        range[std::size_t(c)] = int(r);
+        if (!tree.cluster(c).is_leaf())
+          stack.insert(stack.end(), {tree.cluster(c).first_child, tree.cluster(c).first_child + 1});
+      }
+    }
+    std::vector<BlockIndex> factored;
+    for (const BlockIndex& b : partition.admissible) {
+      const bool large = std::min(tree.cluster(b.rows).size(), tree.cluster(b.cols).size()) >=
+                         options.nested_min_cluster;
+      const bool in_one_block = range[std::size_t(b.rows)] >= 0 &&
+                                range[std::size_t(b.rows)] == range[std::size_t(b.cols)];
+      (large && !in_one_block ? nested_blocks : factored).push_back(b);
+    }
+    partition.admissible = std::move(factored);
+  }
   // The generator (tree-ordered panels, their arrays, the touching pairs' table: about
-  // 0.65 kB per panel) is released as soon as the blocks are built.
+  // 0.65 kB per panel) is released as soon as the blocks are built. The H² part comes first:
+  // the memory its construction holds for a while is then reused by what follows.
+  std::optional<NestedFarField> far;
+  double far_seconds = 0.0;
   const HierarchicalMatrix laplace = [&] {
     const GalerkinBlockGenerator<LaplaceKernel> generator(LaplaceKernel{}, panels, tree);
+    if (far_field == FarField::nested) {
+      NestedFarFieldOptions far_options;
+      far_options.aca_tolerance = options.aca_tolerance;
+      far.emplace(tree, nested_blocks, generator, far_options, progress);
+      partition.dense.insert(partition.dense.end(), far->uncompressed().begin(),
+                             far->uncompressed().end());
+      far_seconds = seconds_since(interior_start);
+    }
     return HierarchicalMatrix(
-        tree, generator,
+        tree, tree, partition, generator,
         {options.aca_tolerance, options.eta, options.single_precision, options.single_precision},
         progress);
   }();
@@ -176,12 +249,13 @@ BoundarySolution solve_transmission_hmatrix(const geometry::SurfaceMesh& mesh,
   std::optional<ClusterCoarseSpace> coarse;
   if (options.coarse_cluster > 0)
     with_exterior([&](const auto& yukawa) {
-      coarse.emplace(tree, laplace, yukawa, half_mass, options.coarse_cluster);
+      coarse.emplace(tree, laplace, yukawa, half_mass, options.coarse_cluster,
+                     HierarchicalMatrix::GroupedColumns::Storage::fixed8, far ? &*far : nullptr);
     });
 
   BoundarySolution solution;
   solution.parameters = parameters;
-  solution.report.method = "hmatrix-gmres";
+  solution.report.method = far ? "hmatrix-h2-gmres" : "hmatrix-gmres";
   solution.report.unknowns = 2 * n;
   solution.report.assembly_seconds = seconds_since(start);
   // The interior H-matrix's wall time split between its dense (near-field) and low-rank
@@ -189,15 +263,15 @@ BoundarySolution solve_transmission_hmatrix(const geometry::SurfaceMesh& mesh,
   const HierarchicalMatrixStats& hstats = laplace.stats();
   const double block_seconds = hstats.dense_seconds + hstats.low_rank_seconds;
   const double near_share = block_seconds > 0.0 ? hstats.dense_seconds / block_seconds : 0.0;
+  const double hmatrix_seconds = interior_seconds - far_seconds;
   solution.report.assembly_stages = {
-      {"interior near field", near_share * interior_seconds},
-      {"interior far field", (1.0 - near_share) * interior_seconds},
+      {"interior near field", near_share * hmatrix_seconds},
+      {"interior far field", (1.0 - near_share) * hmatrix_seconds + far_seconds},
       {"exterior near field", exterior_seconds},
-      {"preconditioner",
-       solution.report.assembly_seconds - interior_seconds - exterior_seconds}};
+      {"preconditioner", solution.report.assembly_seconds - interior_seconds - exterior_seconds}};
   solution.report.operator_parts = {
       {"interior near field", hstats.dense_bytes},
-      {"interior far field", hstats.low_rank_bytes},
+      {"interior far field", hstats.low_rank_bytes + (far ? far->stats().bytes : 0)},
       {"exterior near field", with_exterior([](const auto& yukawa) { return yukawa.bytes(); })},
       {"preconditioner", preconditioner.bytes() + (coarse ? coarse->bytes() : 0)}};
   for (const auto& [part, bytes] : solution.report.operator_parts)
@@ -221,6 +295,8 @@ BoundarySolution solve_transmission_hmatrix(const geometry::SurfaceMesh& mesh,
     }
     y.topRows(n).noalias() = -(half_mass.asDiagonal() * x.topRows(n));
     laplace.multiply_add(densities, y.topRows(n));
+    if (far)
+      far->multiply_add(densities, y.topRows(n));
     const auto exterior_start = Clock::now();
     interior_product_seconds += seconds_since(interior_start);
     // A row-major right-hand side lets the sparse product read each row once for all k.

@@ -64,6 +64,19 @@ struct HMatrixSolverOptions {
   /// dense path at 1e−6 on 2000 faces, against 1.0e−6 preconditioned on the left; the
   /// left side takes 14 iterations there instead of 11; docs/benchmarks.md).
   PreconditionerSide preconditioner_side = PreconditionerSide::left;
+  /// How the Laplace row's far field is kept. `hmatrix`: every admissible block as its own
+  /// factors. `nested`: the blocks between clusters of at least `nested_min_cluster` panels
+  /// in the H² form (bem/hierarchical/nested_far_field.hpp: bases shared by a cluster's
+  /// blocks, built from the kernel without holding those blocks' factors), the smaller
+  /// ones as factors; less memory, a second cross approximation of the large blocks (time).
+  /// `automatic`: `nested` where the H-matrix would not fit in the memory allowed.
+  enum class FarField { automatic, hmatrix, nested };
+  FarField far_field = FarField::automatic;
+  /// Smallest cluster of a block kept in the H² form [panels]. Below, a block's own
+  /// narrow-format factors take fewer bytes than its coupling between shared bases
+  /// (measured on a 100820-face sphere, docs/benchmarks.md: 128, 256 and 512 panels give
+  /// 704, 686 and … MB of far field against the H-matrix's 1001 MB).
+  Eigen::Index nested_min_cluster = 256;
   /// Upper bound on the memory the solver may use [bytes]; 0 = what the machine has.
   std::uint64_t max_memory_bytes = 0;
 };
@@ -71,10 +84,12 @@ struct HMatrixSolverOptions {
 /// Bytes the fast path is expected to hold for `faces` faces (the guard's estimate: near
 /// field and low-rank factors at a typical rank, the exterior matrix of `exterior_pairs`
 /// panel pairs in `exterior_runs` runs (yukawa_near_field_rows counts them),
-/// preconditioner, Krylov bases).
-std::uint64_t hmatrix_solver_memory_estimate(Eigen::Index faces, std::uint64_t exterior_pairs,
-                                             std::uint64_t exterior_runs,
-                                             const HMatrixSolverOptions& options);
+/// preconditioner, Krylov bases), with the far field kept as `far_field` (hmatrix or
+/// nested; automatic is taken as hmatrix).
+std::uint64_t hmatrix_solver_memory_estimate(
+    Eigen::Index faces, std::uint64_t exterior_pairs, std::uint64_t exterior_runs,
+    const HMatrixSolverOptions& options,
+    HMatrixSolverOptions::FarField far_field = HMatrixSolverOptions::FarField::hmatrix);
 
 /// Solves for s_1, s_2, s_3 on a closed, outward-oriented mesh. Throws ResourceError if the
 /// estimate does not fit and NumericalError if GMRES does not reach the tolerance or the

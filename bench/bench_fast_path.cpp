@@ -4,13 +4,17 @@
 //
 //   bench_fast_path sphere|plate|box FACES [dense|hmatrix|both] [--tolerance T] [--aca E]
 //                   [--leaf L] [--eta H] [--single|--double] [--block B] [--coarse C] [--right]
+//                   [--far-field auto|hmatrix|nested] [--nested-min-cluster S]
 //   bench_fast_path file MESH H0 [dense|hmatrix|both] [options as above]
 //                   (a mesh file as the solver mesh, no refinement; no closed form, error 0)
 //   bench_fast_path entry-costs FACES     (where a row of the operators spends its time)
 //   bench_fast_path nested-bases sphere|box FACES [--aca E] [--eta H] [--leaf L] [--basis T]
 //                   (the Laplace far field in the H² form against the H-matrix's factors)
+//   bench_fast_path nested-far-field sphere|box FACES [--aca E] [--basis T] [--compare]
+//                   (the H² far field built from the kernel, never holding the H-matrix)
 //   bench_fast_path interior sphere|box FACES POINTS [--solve] [--order P] [--theta T]
-//                   [--leaf L] [--negligible D] [--reference M] [--sweep]      (evaluate_potential on a grid: treecode vs direct)
+//                   [--leaf L] [--negligible D] [--reference M] [--sweep]      (evaluate_potential
+//                   on a grid: treecode vs direct)
 //
 // Fields: shape, faces, solver, times (mesh, assemble, solve, features; seconds), iterations,
 // residual, cpu_seconds (user + system of all threads for the solve and features),
@@ -33,17 +37,18 @@
 
 #include "bem/dense_transmission_solver.hpp"
 #include "bem/galerkin_operators.hpp"
-#include "bem/laplace_kernel.hpp"
-#include "bem/yukawa_kernel.hpp"
 #include "bem/hierarchical/galerkin_block_generator.hpp"
 #include "bem/hierarchical/nested_cluster_basis.hpp"
+#include "bem/hierarchical/nested_far_field.hpp"
 #include "bem/hmatrix_transmission_solver.hpp"
+#include "bem/laplace_kernel.hpp"
 #include "bem/potential_evaluation.hpp"
 #include "bem/surface_gradient.hpp"
-#include "core/memory.hpp"
-#include "geometry/mesh_preparation.hpp"
+#include "bem/yukawa_kernel.hpp"
 #include "core/heap_retention.hpp"
 #include "core/huge_pages.hpp"
+#include "core/memory.hpp"
+#include "geometry/mesh_preparation.hpp"
 #include "geometry/primitive_meshes.hpp"
 #include "tests/support/closed_forms.hpp"
 
@@ -512,6 +517,128 @@ int nested_bases(int argc, char** argv) {
   return 0;
 }
 
+/// The Laplace row's far field [−K0 | V0] in the H² form built from the kernel
+/// (bem/hierarchical/nested_far_field.hpp), on the sphere or the thin-walled box:
+///
+///   bench_fast_path nested-far-field sphere|box FACES [--aca E] [--basis T] [--compare]
+///
+/// prints the construction's time (row and column sides), the entries and bytes, the peak
+/// RSS after the construction (nothing else large is held: the tree, the panels and the
+/// generator's tables), the time of one far-field product with three vectors (best of
+/// three), and ‖A_b − Q S Pᵀ‖/‖A_b‖ against the operator's entries on about 200 blocks.
+/// With --compare, afterwards, the solver's H-matrix (narrow factors) for its far-field bytes
+/// and product time.
+int nested_far_field(int argc, char** argv) {
+  if (argc < 4) {
+    std::fprintf(stderr,
+                 "usage: bench_fast_path nested-far-field sphere|box FACES [--aca E] [--basis T] "
+                 "[--compare]\n");
+    return 2;
+  }
+  const std::string shape = argv[2];
+  bem::NestedFarFieldOptions options;
+  bool compare = false;
+  Eigen::Index min_cluster = 0;
+  for (int i = 4; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--aca" && i + 1 < argc)
+      options.aca_tolerance = std::atof(argv[++i]);
+    else if (a == "--min-cluster" && i + 1 < argc)
+      min_cluster = std::atol(argv[++i]);
+    else if (a == "--basis" && i + 1 < argc)
+      options.basis_tolerance = std::atof(argv[++i]);
+    else if (a == "--compare")
+      compare = true;
+    else {
+      std::fprintf(stderr, "bench_fast_path: unknown argument %s\n", a.c_str());
+      return 2;
+    }
+  }
+  const Problem p = shape == "sphere" ? sphere(std::atof(argv[3])) : box(std::atof(argv[3]));
+  const auto panels = bem::make_panels(p.mesh);
+  const bem::ClusterTree tree(panels);
+  const bem::GalerkinBlockGenerator<bem::LaplaceKernel> generator(bem::LaplaceKernel{}, panels,
+                                                                  tree);
+  const bem::BlockPartition partition = bem::partition_blocks(tree);
+  // Blocks with a cluster of fewer than min_cluster panels stay in the H-matrix's form.
+  bem::BlockPartition small;
+  std::vector<bem::BlockIndex> large;
+  for (const bem::BlockIndex& b : partition.admissible)
+    (std::min(tree.cluster(b.rows).size(), tree.cluster(b.cols).size()) < min_cluster
+         ? small.admissible
+         : large)
+        .push_back(b);
+  const double rss_before = double(peak_resident_bytes());
+  auto t0 = Clock::now();
+  const bem::NestedFarField h2(tree, large, generator, options);
+  const double build_seconds = seconds(t0);
+  const double rss_after = double(peak_resident_bytes());
+  t0 = Clock::now();
+  const bem::HierarchicalMatrix small_blocks(
+      tree, tree, small, generator,
+      {options.aca_tolerance, bem::kDefaultAdmissibility, true, true, true});
+  const double small_seconds = seconds(t0);
+  const Eigen::Index n = p.mesh.num_faces();
+  const Eigen::MatrixXd x = Eigen::MatrixXd::Random(n, 6);
+  const auto product_seconds = [&](const auto& apply) {
+    double best = 1e300;
+    for (int repeat = 0; repeat < 3; ++repeat) {
+      Eigen::MatrixXd y = Eigen::MatrixXd::Zero(n, 3);
+      const auto start = Clock::now();
+      apply(y);
+      best = std::min(best, seconds(start));
+    }
+    return best;
+  };
+  const double h2_product = product_seconds([&](Eigen::MatrixXd& y) { h2.multiply_add(x, y); });
+  const double small_product =
+      product_seconds([&](Eigen::MatrixXd& y) { small_blocks.multiply_add(x, y); });
+  const std::size_t stride = std::max<std::size_t>(1, h2.blocks().size() / 200);
+  double worst = 0.0;
+  for (std::size_t b = 0; b < h2.blocks().size(); b += stride) {
+    const bem::Cluster& t = tree.cluster(h2.blocks()[b].rows);
+    const bem::Cluster& s = tree.cluster(h2.blocks()[b].cols);
+    Eigen::MatrixXd exact(t.size(), 2 * s.size());
+    generator.fill(t.begin, t.end, s.begin, s.end, exact);
+    worst = std::max(worst, (exact - h2.block(b)).norm() / exact.norm());
+  }
+  double solver_far_mb = 0.0, solver_product = 0.0, solver_seconds = 0.0;
+  if (compare) {
+    bem::BlockPartition far;
+    far.admissible = partition.admissible;
+    t0 = Clock::now();
+    const bem::HierarchicalMatrix solver_form(
+        tree, tree, far, generator,
+        {options.aca_tolerance, bem::kDefaultAdmissibility, true, true, true});
+    solver_seconds = seconds(t0);
+    solver_far_mb = double(solver_form.stats().low_rank_bytes) / 1e6;
+    solver_product = product_seconds([&](Eigen::MatrixXd& y) { solver_form.multiply_add(x, y); });
+  }
+  const bem::NestedFarFieldStats& st = h2.stats();
+  std::printf(
+      "{\"shape\": \"%s\", \"faces\": %ld, \"aca\": %.1e, \"basis_tolerance\": %.1e, "
+      "\"blocks\": %zu, \"uncompressed_blocks\": %zu, \"build_seconds\": %.1f, \"row_seconds\": "
+      "%.1f, "
+      "\"column_seconds\": %.1f, \"leaf_basis_entries\": %llu, \"transfer_entries\": %llu, "
+      "\"coupling_entries\": %llu, \"h2_mb\": %.1f, \"max_row_rank\": %ld, \"max_column_rank\": "
+      "%ld, "
+      "\"h2_product_seconds\": %.3f, \"error_max\": %.2e, \"peak_rss_before_mb\": %.1f, "
+      "\"peak_rss_after_build_mb\": %.1f, \"solver_far_field_mb\": %.1f, "
+      "\"solver_far_field_seconds\": %.1f, "
+      "\"solver_far_field_product_seconds\": %.3f, \"min_cluster\": %ld, \"small_blocks\": %zu, "
+      "\"small_low_rank_mb\": %.1f, \"small_dense_mb\": %.1f, \"small_seconds\": %.1f, "
+      "\"small_product_seconds\": %.3f}\n",
+      shape.c_str(), long(n), options.aca_tolerance, options.basis_tolerance, st.blocks,
+      st.uncompressed_blocks, build_seconds, st.row_seconds, st.column_seconds,
+      (unsigned long long)st.leaf_basis_entries, (unsigned long long)st.transfer_entries,
+      (unsigned long long)st.coupling_entries, double(st.bytes) / 1e6, long(st.max_row_rank),
+      long(st.max_column_rank), h2_product, worst, rss_before / 1e6, rss_after / 1e6, solver_far_mb,
+      solver_seconds, solver_product, long(min_cluster), small.admissible.size(),
+      double(small_blocks.stats().low_rank_bytes) / 1e6,
+      double(small_blocks.stats().dense_bytes) / 1e6, small_seconds, small_product);
+  return 0;
+}
+
 int benchmark(int argc, char** argv) {
   bemshape::restart_with_heap_huge_pages(argv);  // as the bemshape executable does
   bemshape::retain_freed_heap_memory();
@@ -519,6 +646,8 @@ int benchmark(int argc, char** argv) {
   if (argc == 3 && std::string(argv[1]) == "entry-costs") return entry_costs(std::atof(argv[2]));
   if (argc >= 2 && std::string(argv[1]) == "interior") return interior(argc, argv);
   if (argc >= 2 && std::string(argv[1]) == "nested-bases") return nested_bases(argc, argv);
+  if (argc >= 2 && std::string(argv[1]) == "nested-far-field")
+    return nested_far_field(argc, argv);
   if (argc < 3) {
     std::fprintf(stderr, "usage: bench_fast_path sphere|plate|box FACES [dense|hmatrix|both] "
                          "[--tolerance T] [--aca E] [--leaf L] [--eta H] [--single|--double] [--block B] [--coarse C]\n");
@@ -545,6 +674,13 @@ int benchmark(int argc, char** argv) {
     else if (a == "--double") options.single_precision = false;
     else if (a == "--block" && i + 1 < argc) options.preconditioner_block = std::atol(argv[++i]);
     else if (a == "--coarse" && i + 1 < argc) options.coarse_cluster = std::atol(argv[++i]);
+    else if (a == "--far-field" && i + 1 < argc) {
+      const std::string f = argv[++i];
+      options.far_field = f == "nested"    ? bem::HMatrixSolverOptions::FarField::nested
+                          : f == "hmatrix" ? bem::HMatrixSolverOptions::FarField::hmatrix
+                                           : bem::HMatrixSolverOptions::FarField::automatic;
+    } else if (a == "--nested-min-cluster" && i + 1 < argc)
+      options.nested_min_cluster = std::atol(argv[++i]);
     else {
       std::fprintf(stderr, "bench_fast_path: unknown argument %s\n", a.c_str());
       return 2;

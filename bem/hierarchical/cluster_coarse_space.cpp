@@ -7,10 +7,10 @@ namespace bemshape::bem {
 template <class Scalar>
 ClusterCoarseSpace::ClusterCoarseSpace(const ClusterTree& tree, const HierarchicalMatrix& laplace,
                                        const YukawaNearField<Scalar>& yukawa,
-                                       const Eigen::VectorXd& half_mass,
-                                       Eigen::Index cluster_size,
-                                       HierarchicalMatrix::GroupedColumns::Storage storage)
-    : laplace_(laplace), n_(tree.root().size()), half_mass_(half_mass) {
+                                       const Eigen::VectorXd& half_mass, Eigen::Index cluster_size,
+                                       HierarchicalMatrix::GroupedColumns::Storage storage,
+                                       const NestedFarField* far)
+    : laplace_(laplace), far_(far), n_(tree.root().size()), half_mass_(half_mass) {
   std::vector<int> coarse = tree.clusters_up_to(cluster_size);
   while (Eigen::Index(coarse.size()) > kMaxClusters)
     coarse = tree.clusters_up_to(cluster_size *= 2);
@@ -53,6 +53,8 @@ ClusterCoarseSpace::ClusterCoarseSpace(const ClusterTree& tree, const Hierarchic
   Eigen::MatrixXd coarse_matrix = Eigen::MatrixXd::Zero(2 * m, 2 * m);
   coarse_matrix.topRows(m) = laplace_grouped_.sums;
   laplace_grouped_.sums = Eigen::MatrixXd();
+  if (far_)
+    coarse_matrix.topRows(m) += far_->grouped_sums(cluster_of_, m);
   for (Eigen::Index i = 0; i < n_; ++i) {
     const Eigen::Index c = cluster_of_[size_t(i)];
     for (SparseRowMatrix::InnerIterator it(yukawa_grouped_, i); it; ++it)
@@ -66,11 +68,13 @@ ClusterCoarseSpace::ClusterCoarseSpace(const ClusterTree& tree, const Hierarchic
 template ClusterCoarseSpace::ClusterCoarseSpace(const ClusterTree&, const HierarchicalMatrix&,
                                                 const YukawaNearField<double>&,
                                                 const Eigen::VectorXd&, Eigen::Index,
-                                                HierarchicalMatrix::GroupedColumns::Storage);
+                                                HierarchicalMatrix::GroupedColumns::Storage,
+                                                const NestedFarField*);
 template ClusterCoarseSpace::ClusterCoarseSpace(const ClusterTree&, const HierarchicalMatrix&,
                                                 const YukawaNearField<float>&,
                                                 const Eigen::VectorXd&, Eigen::Index,
-                                                HierarchicalMatrix::GroupedColumns::Storage);
+                                                HierarchicalMatrix::GroupedColumns::Storage,
+                                                const NestedFarField*);
 
 Eigen::MatrixXd ClusterCoarseSpace::coarse_solve(const Eigen::MatrixXd& r) const {
   const Eigen::Index m = clusters_;
@@ -104,6 +108,12 @@ Eigen::MatrixXd ClusterCoarseSpace::apply_operator(const Eigen::MatrixXd& y) con
   for (Eigen::Index i = 0; i < n_; ++i) phi.row(i) = y.row(cluster_of_[size_t(i)]);
   out.topRows(n_).noalias() = -(half_mass_.asDiagonal() * phi);
   laplace_.multiply_add_grouped(laplace_grouped_, densities, out.topRows(n_));
+  if (far_) {
+    Eigen::MatrixXd expanded(n_, 2 * k);  // E applied to both densities
+    for (Eigen::Index i = 0; i < n_; ++i)
+      expanded.row(i) = densities.row(cluster_of_[size_t(i)]);
+    far_->multiply_add(expanded, out.topRows(n_));
+  }
   out.bottomRows(n_).noalias() = half_mass_.asDiagonal() * phi;
   out.bottomRows(n_) += yukawa_grouped_ * y;
   return out;

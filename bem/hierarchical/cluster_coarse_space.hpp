@@ -45,6 +45,7 @@
 #include "bem/hierarchical/cluster_block_preconditioner.hpp"
 #include "bem/hierarchical/cluster_tree.hpp"
 #include "bem/hierarchical/hierarchical_matrix.hpp"
+#include "bem/hierarchical/nested_far_field.hpp"
 #include "bem/hierarchical/yukawa_near_field.hpp"
 
 namespace bemshape::bem {
@@ -64,12 +65,17 @@ class ClusterCoarseSpace {
   /// that many if there would be more than kMaxClusters. Scalar: double or float
   /// (instantiated for both).
   /// `storage`: how A E is kept (exact: M⁻¹ A P = P to rounding).
+  /// `far`: the part of [−K0 | V0] kept in the H² form (bem/hierarchical/nested_far_field.hpp),
+  /// if any, the rest being `laplace` (kept by reference too). Its share of A_c comes from
+  /// NestedFarField::grouped_sums, its share of A P y from its product with P y: the H²
+  /// product reads each basis and coupling once, a fraction of the whole operator's bytes.
   template <class Scalar>
   ClusterCoarseSpace(const ClusterTree& tree, const HierarchicalMatrix& laplace,
                      const YukawaNearField<Scalar>& yukawa, const Eigen::VectorXd& half_mass,
                      Eigen::Index cluster_size = kDefaultClusterSize,
                      HierarchicalMatrix::GroupedColumns::Storage storage =
-                         HierarchicalMatrix::GroupedColumns::Storage::fixed8);
+                         HierarchicalMatrix::GroupedColumns::Storage::fixed8,
+                     const NestedFarField* far = nullptr);
 
   /// z = M⁻¹ r = P y + B (r − A P y), y = A_c⁻¹ Pᵀ r, for each column r = (r_φ, r_q) of
   /// `r` (2N × k, tree order); `blocks` is B.
@@ -95,6 +101,7 @@ class ClusterCoarseSpace {
 
  private:
   const HierarchicalMatrix& laplace_;
+  const NestedFarField* far_ = nullptr;
   Eigen::Index n_ = 0, clusters_ = 0;
   std::vector<Eigen::Index> cluster_of_;
   HierarchicalMatrix::GroupedColumns laplace_grouped_;  // [−K0 | V0] E

@@ -30,6 +30,52 @@ constexpr Eigen::Index kDenseFirstEntries = 64 * 128;
 
 }  // namespace
 
+Eigen::Index admissible_rank_limit(Eigen::Index rows, Eigen::Index cols, bool narrow) {
+  // A rank at which U and V hold as many entries as the block gains nothing. With
+  // fixed-point columns a factor entry takes about 2.3 bytes against a near-field entry's 4
+  // (measured on spheres and boxes, docs/benchmarks.md), so ACA may go to 1.5 times that
+  // rank; the stored bytes decide afterwards.
+  const Eigen::Index equal_entries = std::max<Eigen::Index>(1, (rows * cols) / (rows + cols));
+  return narrow ? std::min(std::min(rows, cols), (3 * equal_entries) / 2) : equal_entries;
+}
+
+std::optional<LowRankBlock> approximate_admissible_block(
+    const OperatorBlockGenerator& generator, Eigen::Index row_begin, Eigen::Index row_end,
+    Eigen::Index col_begin, Eigen::Index col_end, double epsilon, Eigen::Index max_rank,
+    Eigen::MatrixXd& filled) {
+  const int g = generator.densities(), o = generator.outputs();
+  const Eigen::Index m = row_end - row_begin, n = col_end - col_begin;
+  filled = Eigen::MatrixXd();
+  // Small blocks are filled whole first (kDenseFirstEntries) and ACA reads them.
+  if (o * m * g * n <= kDenseFirstEntries) {
+    filled.resize(o * m, g * n);
+    generator.fill(row_begin, row_end, col_begin, col_end, filled);
+  }
+  Eigen::MatrixXd column_block(o * m, g);
+  Eigen::MatrixXd row_block(o, g * n);
+  return adaptive_cross_approximation(
+      o * m, g * n,
+      [&](Eigen::Index i, Eigen::Ref<Eigen::VectorXd> row) {
+        if (filled.size() > 0) {
+          row = filled.row(i).transpose();
+          return;
+        }
+        const Eigen::Index r = i % m;
+        generator.fill(row_begin + r, row_begin + r + 1, col_begin, col_end, row_block);
+        row = row_block.row(i / m).transpose();
+      },
+      [&](Eigen::Index j, Eigen::Ref<Eigen::VectorXd> column) {
+        if (filled.size() > 0) {
+          column = filled.col(j);
+          return;
+        }
+        const Eigen::Index c = j % n, d = j / n;
+        generator.fill(row_begin, row_end, col_begin + c, col_begin + c + 1, column_block);
+        column = column_block.col(d);
+      },
+      epsilon, max_rank);
+}
+
 HierarchicalMatrix::HierarchicalMatrix(const ClusterTree& tree,
                                        const OperatorBlockGenerator& generator,
                                        const HierarchicalMatrixOptions& options,
@@ -40,11 +86,18 @@ HierarchicalMatrix::HierarchicalMatrix(const ClusterTree& row_tree, const Cluste
                                        const OperatorBlockGenerator& generator,
                                        const HierarchicalMatrixOptions& options,
                                        const ProgressCallback& progress)
+    : HierarchicalMatrix(row_tree, col_tree, partition_blocks(row_tree, col_tree, options.eta),
+                         generator, options, progress) {}
+
+HierarchicalMatrix::HierarchicalMatrix(const ClusterTree& row_tree, const ClusterTree& col_tree,
+                                       const BlockPartition& partition,
+                                       const OperatorBlockGenerator& generator,
+                                       const HierarchicalMatrixOptions& options,
+                                       const ProgressCallback& progress)
     : rows_(row_tree.root().size()),
       cols_(col_tree.root().size()),
       densities_(generator.densities()),
       outputs_(generator.outputs()) {
-  const BlockPartition partition = partition_blocks(row_tree, col_tree, options.eta);
   const int g = densities_, o = outputs_;
   blocks_.reserve(partition.admissible.size() + partition.dense.size());
   for (const auto* list : {&partition.dense, &partition.admissible})
@@ -83,42 +136,11 @@ HierarchicalMatrix::HierarchicalMatrix(const ClusterTree& row_tree, const Cluste
         generator.fill(b.row_begin, b.row_end, b.col_begin, b.col_end, b.dense);
       };
       if (b.is_low_rank) {
-        // ACA on the o·m × g·n block; a rank at which U and V hold as many bytes as the block
-        // itself gains nothing, so the block is then computed densely. With fixed-point columns
-        // a factor entry takes about 2.3 bytes against a near-field entry's 4 (measured on
-        // spheres and boxes, docs/benchmarks.md), so ACA may go to 1.5 times the rank of equal
-        // entry counts; the stored bytes decide below.
-        const Eigen::Index equal_entries = std::max<Eigen::Index>(1, (o * m * g * n) / (o * m + g * n));
         const bool narrow = options.single_precision_factors && options.fixed_point_columns &&
                             options.single_precision_near_field;
-        const Eigen::Index max_rank =
-            narrow ? std::min(std::min(o * m, g * n), (3 * equal_entries) / 2) : equal_entries;
-        // Small blocks are filled whole first (kDenseFirstEntries) and ACA reads them.
-        if (o * m * g * n <= kDenseFirstEntries) fill_whole();
-        Eigen::MatrixXd column_block(o * m, g);
-        Eigen::MatrixXd row_block(o, g * n);
-        auto aca = adaptive_cross_approximation(
-            o * m, g * n,
-            [&](Eigen::Index i, Eigen::Ref<Eigen::VectorXd> row) {
-              if (b.dense.size() > 0) {
-                row = b.dense.row(i).transpose();
-                return;
-              }
-              const Eigen::Index r = i % m;
-              generator.fill(b.row_begin + r, b.row_begin + r + 1, b.col_begin, b.col_end, row_block);
-              row = row_block.row(i / m).transpose();
-            },
-            [&](Eigen::Index j, Eigen::Ref<Eigen::VectorXd> column) {
-              if (b.dense.size() > 0) {
-                column = b.dense.col(j);
-                return;
-              }
-              const Eigen::Index c = j % n, d = j / n;
-              generator.fill(b.row_begin, b.row_end, b.col_begin + c, b.col_begin + c + 1,
-                             column_block);
-              column = column_block.col(d);
-            },
-            options.aca_tolerance, max_rank);
+        auto aca = approximate_admissible_block(
+            generator, b.row_begin, b.row_end, b.col_begin, b.col_end, options.aca_tolerance,
+            admissible_rank_limit(o * m, g * n, narrow), b.dense);
         if (aca) {
           if (options.single_precision_factors) {
             b.factors = AdaptivePrecisionFactors(aca->U, aca->V, options.fixed_point_columns);

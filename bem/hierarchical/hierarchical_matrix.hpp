@@ -12,6 +12,7 @@
 // order with a static schedule: bit-identical for a given thread count.
 
 #include <cstdint>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -60,6 +61,21 @@ struct HierarchicalMatrixOptions {
   bool fixed_point_columns = true;
 };
 
+/// The largest rank worth finding for an admissible block of rows × cols entries: where U
+/// and V would hold as many entries as the block (`narrow`: 1.5 times that, for factors in
+/// the narrow formats of AdaptivePrecisionFactors against a single-precision block).
+Eigen::Index admissible_rank_limit(Eigen::Index rows, Eigen::Index cols, bool narrow);
+
+/// The cross approximation of the admissible block (rows [row_begin, row_end), columns
+/// [col_begin, col_end) in tree order, o·|τ| × g·|σ| entries) the way the H-matrix computes
+/// it: blocks of at most 64 × 128 entries are filled whole first (into `filled`, otherwise
+/// left empty) and ACA reads them. Nothing if the rank reaches `max_rank`. Deterministic: the
+/// same block gives the same factors every time, whatever the thread.
+std::optional<LowRankBlock> approximate_admissible_block(
+    const OperatorBlockGenerator& generator, Eigen::Index row_begin, Eigen::Index row_end,
+    Eigen::Index col_begin, Eigen::Index col_end, double epsilon, Eigen::Index max_rank,
+    Eigen::MatrixXd& filled);
+
 /// Storage statistics.
 struct HierarchicalMatrixStats {
   std::uint64_t dense_entries = 0;     ///< entries of the dense (near-field) blocks
@@ -97,6 +113,13 @@ class HierarchicalMatrix {
   /// An operator from the elements of `col_tree` to those of `row_tree`.
   HierarchicalMatrix(const ClusterTree& row_tree, const ClusterTree& col_tree,
                      const OperatorBlockGenerator& generator,
+                     const HierarchicalMatrixOptions& options = {},
+                     const ProgressCallback& progress = {});
+  /// The blocks of `partition` only (options.eta unused): its admissible blocks low rank
+  /// where that pays, its dense blocks dense. With blocks left out (a far field kept in
+  /// another form, bem/hierarchical/nested_far_field.hpp) the matrix is that part of A.
+  HierarchicalMatrix(const ClusterTree& row_tree, const ClusterTree& col_tree,
+                     const BlockPartition& partition, const OperatorBlockGenerator& generator,
                      const HierarchicalMatrixOptions& options = {},
                      const ProgressCallback& progress = {});
 

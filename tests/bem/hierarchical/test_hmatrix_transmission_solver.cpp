@@ -82,6 +82,39 @@ TEST_CASE("H-matrix solver on a hollow box (flat walls, sharp edges, a cavity) =
   CHECK(fast.report.iterations < blocks_only.report.iterations);
 }
 
+TEST_CASE("H-matrix solver with the far field in the H² form = dense, = the H-matrix path") {
+  const auto mesh = geometry::make_geodesic_sphere(0.5, 10);  // 2000 faces
+  const auto dense = bem::solve_transmission_dense(mesh, kParameters);
+  bem::HMatrixSolverOptions options;
+  options.preconditioner_block = 64;
+  options.coarse_cluster = 64;
+  // Below the default 1e−6, so that the operators' difference shows rather than where each
+  // GMRES run happens to stop.
+  options.tolerance = 1e-8;
+  options.far_field = bem::HMatrixSolverOptions::FarField::hmatrix;
+  const auto factored = bem::solve_transmission_hmatrix(mesh, kParameters, options);
+  // Blocks between clusters of 32 panels and more, outside the preconditioner's blocks of 64,
+  // in the H² form: most of the far field at this size.
+  options.far_field = bem::HMatrixSolverOptions::FarField::nested;
+  options.nested_min_cluster = 32;
+  const auto nested = bem::solve_transmission_hmatrix(mesh, kParameters, options);
+  CHECK(factored.report.method == "hmatrix-gmres");
+  CHECK(nested.report.method == "hmatrix-h2-gmres");
+  CAPTURE(relative(nested.phi, dense.phi), relative(nested.q, dense.q),
+          relative(factored.phi, dense.phi), relative(factored.q, dense.q),
+          relative(nested.q, factored.q), nested.report.iterations, factored.report.iterations);
+  CHECK(nested.report.preconditioned_residual <= 1e-8);
+  CHECK(relative(nested.phi, dense.phi) < 1e-6);
+  CHECK(relative(nested.q, dense.q) < 1e-5);
+  // Both operators within about 1e−7 of A (single-precision storage; tests of
+  // nested_far_field.hpp and hierarchical_matrix.hpp).
+  CHECK(relative(nested.phi, factored.phi) < 1e-6);
+  CHECK(relative(nested.q, factored.q) < 3e-6);
+  // The same preconditioner on an operator within about 1e−7 of the other: the same
+  // iterations, give or take one.
+  CHECK(std::abs(nested.report.iterations - factored.report.iterations) <= 1);
+}
+
 TEST_CASE("H-matrix solver: GMRES that cannot reach its tolerance is a NumericalError") {
   const auto mesh = geometry::make_geodesic_sphere(0.5, 4);
   bem::HMatrixSolverOptions options;
