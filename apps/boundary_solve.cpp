@@ -85,6 +85,9 @@ BoundarySolveRun prepare_and_solve(const BoundarySolveSetup& given, StageTimes& 
   const std::string& method = setup.solver.method;
   if (method != "auto" && method != "dense" && method != "hmatrix")
     throw InputError("--solver must be auto, dense or hmatrix, got '" + method + "'");
+  const std::string& far_field = setup.solver.far_field;
+  if (far_field != "auto" && far_field != "hmatrix" && far_field != "nested")
+    throw InputError("--far-field must be auto, hmatrix or nested, got '" + far_field + "'");
   if (!(setup.solver.tolerance > 0.0 && setup.solver.tolerance < 1.0))
     throw InputError("--tolerance must be in (0, 1), got " + number_text(setup.solver.tolerance, 3));
   report_progress(progress, "assemble", 0.0);
@@ -97,6 +100,10 @@ BoundarySolveRun prepare_and_solve(const BoundarySolveSetup& given, StageTimes& 
     // 1e−6, not for a tighter one.
     options.single_precision = setup.solver.tolerance >= 1e-6;
     options.max_memory_bytes = setup.max_memory_bytes;
+    using FarField = bem::HMatrixSolverOptions::FarField;
+    options.far_field = far_field == "hmatrix"  ? FarField::hmatrix
+                        : far_field == "nested" ? FarField::nested
+                                                : FarField::automatic;
     try {
       run.solution = bem::solve_transmission_hmatrix(run.solver_mesh, parameters, options, progress);
     } catch (const ResourceError& refused) {
@@ -114,6 +121,10 @@ BoundarySolveRun prepare_and_solve(const BoundarySolveSetup& given, StageTimes& 
       throw_does_not_fit(setup, run, budget);
     bem::DenseSolverOptions options;
     options.max_memory_bytes = setup.max_memory_bytes;
+    using FarField = bem::HMatrixSolverOptions::FarField;
+    options.far_field = far_field == "hmatrix"  ? FarField::hmatrix
+                        : far_field == "nested" ? FarField::nested
+                                                : FarField::automatic;
     try {
       run.solution = bem::solve_transmission_dense(run.solver_mesh, parameters, options, progress);
     } catch (const ResourceError&) {

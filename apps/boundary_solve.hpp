@@ -29,6 +29,10 @@ struct SolverChoice {
   std::string method = "auto";
   /// Relative residual the iterative (H-matrix) path must reach.
   double tolerance = 1e-6;
+  /// How the H-matrix path keeps the Laplace far field: "auto" (the H-matrix's own factors
+  /// where they fit in memory, the H² form where not), "hmatrix" or "nested" (H²;
+  /// bem::HMatrixSolverOptions::FarField).
+  std::string far_field = "auto";
 };
 
 /// The largest solver mesh "auto" gives to the dense path. Measured on the ball

@@ -23,7 +23,8 @@ inline void add_solver_mesh_options(CLI::App& command, std::optional<double>& ma
       ->capture_default_str();
 }
 
-/// Registers --solver (auto | dense | hmatrix) and --tolerance (GMRES relative residual).
+/// Registers --solver (auto | dense | hmatrix), --far-field (auto | hmatrix | nested) and
+/// --tolerance (GMRES relative residual).
 inline void add_solver_choice_options(CLI::App& command, SolverChoice& choice) {
   command
       .add_option("--solver", choice.method,
@@ -31,6 +32,13 @@ inline void add_solver_choice_options(CLI::App& command, SolverChoice& choice) {
                   "for large meshes) or auto (dense up to " +
                       std::to_string(kAutoDenseFaces) + " solver faces)")
       ->check(CLI::IsMember({"auto", "dense", "hmatrix"}))
+      ->capture_default_str();
+  command
+      .add_option("--far-field", choice.far_field,
+                  "How the hmatrix solver keeps the far field of the interior operators: hmatrix "
+                  "(fastest), nested (H2 form: about a third less memory, a slower assembly) or "
+                  "auto (nested only where hmatrix would not fit in memory)")
+      ->check(CLI::IsMember({"auto", "hmatrix", "nested"}))
       ->capture_default_str();
   command
       .add_option("--tolerance", choice.tolerance,

@@ -234,6 +234,7 @@ nlohmann::json report_json(const ThicknessOptions& options, double h0, const Bou
        {{"method", run.solution.report.method},
         {"unknowns", run.solution.report.unknowns},
         {"iterations", run.solution.report.iterations},
+        {"gmres_restart", run.solution.report.restart},
         {"residual", run.solution.report.residual},
         {"preconditioned_residual", run.solution.report.preconditioned_residual},
         {"operator_mb", double(run.solution.report.operator_bytes) / 1e6},

@@ -22,6 +22,9 @@ struct SolveReport {
   std::string method;             ///< "dense-lu", …
   Eigen::Index unknowns = 0;      ///< size of the linear system
   int iterations = 0;             ///< Krylov iterations (0 for a direct solve)
+  /// Restart length of the Krylov solver (0 for a direct solve): the one asked for, or less
+  /// where its basis would not fit in the memory allowed.
+  int restart = 0;
   double residual = 0.0;          ///< max over right-hand sides of ‖A x − b‖ / ‖b‖
   /// max over right-hand sides of ‖M⁻¹(A x − b)‖ / ‖M⁻¹b‖ for a left-preconditioned Krylov
   /// solve, the quantity its tolerance bounds (an estimate of the solution's relative

@@ -33,13 +33,18 @@ double seconds_since(Clock::time_point start) {
 /// the memory estimate.
 constexpr double kTypicalRank = 16.0;
 
-/// With the far field nested (H²): bytes per face and level of the blocks left as factors
-/// (small clusters), the bases' typical rank, and the couplings' bytes per face and level
-/// above nested_min_cluster. Measured on spheres of 100820 and … faces (docs/benchmarks.md):
-/// used only by the memory estimate.
+/// With the far field nested (H²), for the memory estimate only: bytes per face and level of
+/// the blocks left as factors (those of clusters below nested_min_cluster), the bases' rank
+/// in the estimate's 3·4·k bytes per face (both sides, 4 bytes an entry; this counts the
+/// transfer matrices' share too), and the couplings' bytes per face and level above. Measured
+/// on spheres of 100820, 200000 and 397620 faces at the defaults (docs/benchmarks.md): 4.2 kB
+/// per face of factors, 1.8 kB of bases and 0.6 kB of couplings, all three flat in N.
 constexpr double kSmallBlockBytes = 1400.0;
-constexpr double kTypicalNestedRank = 100.0;
-constexpr double kNestedCouplingBytes = 80.0;
+/// The shortest restart length the memory guard may choose, below a user's longer one: above
+/// the 13–22 iterations the fast path takes up to 10⁶ faces (docs/benchmarks.md).
+constexpr int kMinRestart = 30;
+constexpr double kTypicalNestedRank = 150.0;
+constexpr double kNestedCouplingBytes = 70.0;
 
 using RowMajorRows = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
@@ -166,12 +171,29 @@ BoundarySolution solve_transmission_hmatrix(const geometry::SurfaceMesh& mesh,
   FarField far_field = options.far_field;
   if (far_field == FarField::automatic) {
     const std::uint64_t budget = memory_budget_bytes(options.max_memory_bytes);
-    far_field =
-        budget == 0 || estimate(FarField::hmatrix) <= budget ? FarField::hmatrix : FarField::nested;
+    const std::uint64_t factored = estimate(FarField::hmatrix);
+    // Below a few levels of large clusters the H² form saves nothing (the estimate knows).
+    far_field = budget == 0 || factored <= budget || factored <= estimate(FarField::nested)
+                    ? FarField::hmatrix
+                    : FarField::nested;
   }
-  require_memory(estimate(far_field),
-                 "the hierarchical-matrix BEM system of " + std::to_string(n) + " faces",
-                 "use a coarser mesh (larger --max-edge)", options.max_memory_bytes);
+  // The Krylov bases take 48·N bytes per step of the restart length. Where the whole does
+  // not fit, a shorter restart is taken, down to kMinRestart: GMRES(m) is full GMRES for its
+  // first m iterations, and the solver needs 13–22 (docs/benchmarks.md).
+  HMatrixSolverOptions fitted = options;
+  {
+    const std::uint64_t budget = memory_budget_bytes(options.max_memory_bytes);
+    while (budget > 0 && fitted.restart > kMinRestart &&
+           hmatrix_solver_memory_estimate(n, std::uint64_t(exterior_rows.pairs.sum()),
+                                          std::uint64_t(exterior_rows.runs.sum()), fitted,
+                                          far_field) > budget)
+      fitted.restart = std::max(kMinRestart, fitted.restart - 10);
+  }
+  require_memory(
+      hmatrix_solver_memory_estimate(n, std::uint64_t(exterior_rows.pairs.sum()),
+                                     std::uint64_t(exterior_rows.runs.sum()), fitted, far_field),
+      "the hierarchical-matrix BEM system of " + std::to_string(n) + " faces",
+      "use a coarser mesh (larger --max-edge)", options.max_memory_bytes);
 
   report_progress(progress, "assemble", 0.0);
   const auto interior_start = Clock::now();
@@ -257,6 +279,7 @@ BoundarySolution solve_transmission_hmatrix(const geometry::SurfaceMesh& mesh,
   solution.parameters = parameters;
   solution.report.method = far ? "hmatrix-h2-gmres" : "hmatrix-gmres";
   solution.report.unknowns = 2 * n;
+  solution.report.restart = fitted.restart;
   solution.report.assembly_seconds = seconds_since(start);
   // The interior H-matrix's wall time split between its dense (near-field) and low-rank
   // (far-field) blocks in proportion to the thread time each kind took.
@@ -318,7 +341,7 @@ BoundarySolution solve_transmission_hmatrix(const geometry::SurfaceMesh& mesh,
   const auto solve_start = Clock::now();
   GmresOptions gmres_options;
   gmres_options.tolerance = options.tolerance;
-  gmres_options.restart = options.restart;
+  gmres_options.restart = fitted.restart;
   gmres_options.max_iterations = options.max_iterations;
   gmres_options.side = options.preconditioner_side;
   // b = (0, Vκ g) per direction i: the single-layer half of Y applied to g = n_i/ã.

@@ -75,7 +75,7 @@ struct HMatrixSolverOptions {
   /// Smallest cluster of a block kept in the H² form [panels]. Below, a block's own
   /// narrow-format factors take fewer bytes than its coupling between shared bases
   /// (measured on a 100820-face sphere, docs/benchmarks.md: 128, 256 and 512 panels give
-  /// 704, 686 and … MB of far field against the H-matrix's 1001 MB).
+  /// 704, 686 and 713 MB of far field against the H-matrix's 1001 MB).
   Eigen::Index nested_min_cluster = 256;
   /// Upper bound on the memory the solver may use [bytes]; 0 = what the machine has.
   std::uint64_t max_memory_bytes = 0;

@@ -598,6 +598,8 @@ int nested_far_field(int argc, char** argv) {
   for (std::size_t b = 0; b < h2.blocks().size(); b += stride) {
     const bem::Cluster& t = tree.cluster(h2.blocks()[b].rows);
     const bem::Cluster& s = tree.cluster(h2.blocks()[b].cols);
+    if (t.size() * s.size() > 4000000)
+      continue;  // the sample's blocks in explicit form: 64 MB at most
     Eigen::MatrixXd exact(t.size(), 2 * s.size());
     generator.fill(t.begin, t.end, s.begin, s.end, exact);
     worst = std::max(worst, (exact - h2.block(b)).norm() / exact.norm());
@@ -619,7 +621,8 @@ int nested_far_field(int argc, char** argv) {
       "{\"shape\": \"%s\", \"faces\": %ld, \"aca\": %.1e, \"basis_tolerance\": %.1e, "
       "\"blocks\": %zu, \"uncompressed_blocks\": %zu, \"build_seconds\": %.1f, \"row_seconds\": "
       "%.1f, "
-      "\"column_seconds\": %.1f, \"leaf_basis_entries\": %llu, \"transfer_entries\": %llu, "
+      "\"column_seconds\": %.1f, \"aca_thread_seconds\": %.1f, \"basis_thread_seconds\": %.1f, "
+      "\"basis_r2c\": %.3g, \"leaf_basis_entries\": %llu, \"transfer_entries\": %llu, "
       "\"coupling_entries\": %llu, \"h2_mb\": %.1f, \"max_row_rank\": %ld, \"max_column_rank\": "
       "%ld, "
       "\"h2_product_seconds\": %.3f, \"error_max\": %.2e, \"peak_rss_before_mb\": %.1f, "
@@ -629,12 +632,12 @@ int nested_far_field(int argc, char** argv) {
       "\"small_low_rank_mb\": %.1f, \"small_dense_mb\": %.1f, \"small_seconds\": %.1f, "
       "\"small_product_seconds\": %.3f}\n",
       shape.c_str(), long(n), options.aca_tolerance, options.basis_tolerance, st.blocks,
-      st.uncompressed_blocks, build_seconds, st.row_seconds, st.column_seconds,
-      (unsigned long long)st.leaf_basis_entries, (unsigned long long)st.transfer_entries,
-      (unsigned long long)st.coupling_entries, double(st.bytes) / 1e6, long(st.max_row_rank),
-      long(st.max_column_rank), h2_product, worst, rss_before / 1e6, rss_after / 1e6, solver_far_mb,
-      solver_seconds, solver_product, long(min_cluster), small.admissible.size(),
-      double(small_blocks.stats().low_rank_bytes) / 1e6,
+      st.uncompressed_blocks, build_seconds, st.row_seconds, st.column_seconds, st.aca_seconds,
+      st.basis_seconds, double(st.basis_flops), (unsigned long long)st.leaf_basis_entries,
+      (unsigned long long)st.transfer_entries, (unsigned long long)st.coupling_entries,
+      double(st.bytes) / 1e6, long(st.max_row_rank), long(st.max_column_rank), h2_product, worst,
+      rss_before / 1e6, rss_after / 1e6, solver_far_mb, solver_seconds, solver_product,
+      long(min_cluster), small.admissible.size(), double(small_blocks.stats().low_rank_bytes) / 1e6,
       double(small_blocks.stats().dense_bytes) / 1e6, small_seconds, small_product);
   return 0;
 }

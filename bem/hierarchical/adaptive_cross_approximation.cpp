@@ -11,6 +11,8 @@
 #include <Eigen/QR>
 #include <Eigen/Eigenvalues>
 
+#include "bem/hierarchical/gram_orthogonalisation.hpp"
+
 namespace bemshape::bem {
 namespace {
 
@@ -146,43 +148,6 @@ namespace {
 
 /// Below this fraction of ‖B‖ the columns of C are B's rounding: nothing to resolve.
 constexpr double kRoundingLevel = 1e-15;
-
-/// Which eigenvalues of a Gram matrix are resolved again, on their own columns: rounding of
-/// CᵀC, about u·λ_max (u = 2⁻⁵³), turns each eigenvector by about u·λ_max/gap, which moves
-/// about u²·λ_max²/λ of squared norm between a column of eigenvalue λ and the columns of
-/// eigenvalues near rounding. That is at most 1 % of what the truncation may drop, ε²·λ_max,
-/// for λ ≥ 100·u²/ε²·λ_max: those columns' norms are right, the ones below are rotated again
-/// (their rounding is relative to their own largest, so the same bound holds at every level).
-/// 1.2e−14 at ε = 1e−8, 1.2e−6 at ε = 1e−12.
-double resolved_eigenvalues(double epsilon) {
-  constexpr double u = 0.5 * std::numeric_limits<double>::epsilon();
-  return std::min(0.5, 100.0 * u * u / (epsilon * epsilon));
-}
-
-/// Rotates c ← c X, w ← w X (X orthogonal) until the columns of c are orthogonal: then c's
-/// columns are σᵢ times B's left singular vectors and w's the right ones, for c = B w on
-/// entry. One rotation is the eigenvectors X of the Gram matrix cᵀc, five times cheaper
-/// than an SVD of c for 20–30 columns. The eigenvectors are accurate only for eigenvalues
-/// well above the rounding of cᵀc, about 1e−16 of the largest, that is for singular values
-/// above 1e−8 of the largest; the columns below `resolved` times the largest eigenvalue
-/// (resolved_eigenvalues) are rotated again by the eigenvectors of their own Gram matrix, whose rounding is relative to their own size
-/// (deflation), until what is left is within `negligible2` (squared norm, nothing that
-/// could be kept) or a single column.
-void orthogonalise_columns(Eigen::Ref<Eigen::MatrixXd> c, Eigen::Ref<Eigen::MatrixXd> w,
-                           double negligible2, double resolved) {
-  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> gram(c.transpose() * c);
-  const Eigen::MatrixXd& x = gram.eigenvectors();  // columns by ascending eigenvalue
-  const Eigen::MatrixXd rotated_c = c * x, rotated_w = w * x;
-  c = rotated_c;
-  w = rotated_w;
-  const Eigen::VectorXd& lambda = gram.eigenvalues();
-  const double largest = lambda(lambda.size() - 1);
-  Eigen::Index small = 0;
-  while (small < lambda.size() && lambda(small) < resolved * largest) ++small;
-  if (small < 2 || small == lambda.size()) return;
-  if (c.leftCols(small).squaredNorm() <= negligible2) return;
-  orthogonalise_columns(c.leftCols(small), w.leftCols(small), negligible2, resolved);
-}
 
 /// An orthonormal basis Q of the columns of a factor F (n×k): F = Q R with R upper
 /// triangular, and products Q X.

@@ -67,6 +67,10 @@ struct NestedFarFieldStats {
   Eigen::Index max_row_rank = 0, max_column_rank = 0;
   /// Wall time of the row and column sides [s] (each computes every block's approximation).
   double row_seconds = 0.0, column_seconds = 0.0;
+  /// Thread-seconds of both sides in the blocks' cross approximations and in the bases'
+  /// singular value decompositions, and Σ rows²·columns over the latter's inputs.
+  double aca_seconds = 0.0, basis_seconds = 0.0;
+  std::uint64_t basis_flops = 0;
 };
 
 class NestedFarField {

@@ -4,7 +4,9 @@
 #include <cmath>
 
 #include "bem/dense_transmission_solver.hpp"
+#include "bem/hierarchical/yukawa_near_field.hpp"
 #include "bem/hmatrix_transmission_solver.hpp"
+#include "bem/panel.hpp"
 #include "bem/potential_evaluation.hpp"
 #include "core/errors.hpp"
 #include "geometry/primitive_meshes.hpp"
@@ -113,6 +115,32 @@ TEST_CASE("H-matrix solver with the far field in the H² form = dense, = the H-m
   // The same preconditioner on an operator within about 1e−7 of the other: the same
   // iterations, give or take one.
   CHECK(std::abs(nested.report.iterations - factored.report.iterations) <= 1);
+}
+
+TEST_CASE("H-matrix solver: short of memory, the GMRES restart is shortened down to 30") {
+  const auto mesh = geometry::make_geodesic_sphere(0.5, 10);  // 2000 faces
+  const auto panels = bem::make_panels(mesh);
+  const bem::ClusterTree tree(panels);
+  bem::HMatrixSolverOptions options;
+  options.far_field = bem::HMatrixSolverOptions::FarField::hmatrix;
+  const auto rows =
+      bem::yukawa_near_field_rows(panels, tree, kParameters.kappa, options.aca_tolerance);
+  const auto estimate = [&](int restart) {
+    bem::HMatrixSolverOptions o = options;
+    o.restart = restart;
+    return bem::hmatrix_solver_memory_estimate(mesh.num_faces(), std::uint64_t(rows.pairs.sum()),
+                                               std::uint64_t(rows.runs.sum()), o);
+  };
+  REQUIRE(estimate(40) < estimate(50));
+  options.max_memory_bytes = estimate(40) + 1;  // 60 and 50 do not fit, 40 does
+  const auto solution = bem::solve_transmission_hmatrix(mesh, kParameters, options);
+  CHECK(solution.report.restart == 40);
+  CHECK(solution.report.preconditioned_residual <= 1e-6);
+  options.max_memory_bytes = estimate(30) - 1;  // not even the shortest restart fits
+  CHECK_THROWS_AS(bem::solve_transmission_hmatrix(mesh, kParameters, options), ResourceError);
+  options.max_memory_bytes = 0;
+  CHECK(bem::solve_transmission_hmatrix(mesh, kParameters, options).report.restart ==
+        options.restart);
 }
 
 TEST_CASE("H-matrix solver: GMRES that cannot reach its tolerance is a NumericalError") {
