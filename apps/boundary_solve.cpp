@@ -121,10 +121,6 @@ BoundarySolveRun prepare_and_solve(const BoundarySolveSetup& given, StageTimes& 
       throw_does_not_fit(setup, run, budget);
     bem::DenseSolverOptions options;
     options.max_memory_bytes = setup.max_memory_bytes;
-    using FarField = bem::HMatrixSolverOptions::FarField;
-    options.far_field = far_field == "hmatrix"  ? FarField::hmatrix
-                        : far_field == "nested" ? FarField::nested
-                                                : FarField::automatic;
     try {
       run.solution = bem::solve_transmission_dense(run.solver_mesh, parameters, options, progress);
     } catch (const ResourceError&) {
