@@ -33,18 +33,21 @@ double seconds_since(Clock::time_point start) {
 /// the memory estimate.
 constexpr double kTypicalRank = 16.0;
 
-/// With the far field nested (H²), for the memory estimate only: bytes per face and level of
-/// the blocks left as factors (those of clusters below nested_min_cluster), the bases' rank
-/// in the estimate's 3·4·k bytes per face (both sides, 4 bytes an entry; this counts the
-/// transfer matrices' share too), and the couplings' bytes per face and level above. Measured
-/// on spheres of 100820, 200000 and 397620 faces at the defaults (docs/benchmarks.md): 4.2 kB
-/// per face of factors, 1.8 kB of bases and 0.6 kB of couplings, all three flat in N.
+/// With the far field nested (H²), for the memory estimate only. Measured on spheres of
+/// 100820, 200000 and 397620 faces at the defaults (docs/benchmarks.md, sixteenth session):
+/// 4.2 kB per face of the small blocks' narrow factors, 1.8 kB of bases and 0.6 kB of
+/// couplings, each nearly flat in N. Bytes per face and level of the small blocks' factors
+/// (the 3 levels from leaves of 32 to clusters of 256):
 constexpr double kSmallBlockBytes = 1400.0;
+/// The bases' rank in the estimate's 3·4·k bytes per face (a row and two column rows per
+/// panel, 4 bytes an entry; 1.8 kB per face, the transfer matrices' share included):
+constexpr double kTypicalNestedRank = 150.0;
+/// The couplings' bytes per face and level above nested_min_cluster (0.6 kB per face over
+/// the 8.6–10.6 levels of those spheres; per level, so that deeper trees are not undercounted):
+constexpr double kNestedCouplingBytes = 70.0;
 /// The shortest restart length the memory guard may choose, below a user's longer one: above
 /// the 13–22 iterations the fast path takes up to 10⁶ faces (docs/benchmarks.md).
 constexpr int kMinRestart = 30;
-constexpr double kTypicalNestedRank = 150.0;
-constexpr double kNestedCouplingBytes = 70.0;
 
 using RowMajorRows = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
@@ -95,6 +98,10 @@ std::uint64_t hmatrix_solver_memory_estimate(Eigen::Index faces, std::uint64_t e
                                              std::uint64_t exterior_runs,
                                              const HMatrixSolverOptions& options,
                                              HMatrixSolverOptions::FarField far_field) {
+  if (far_field == HMatrixSolverOptions::FarField::automatic)
+    far_field = options.far_field == HMatrixSolverOptions::FarField::nested
+                    ? HMatrixSolverOptions::FarField::nested
+                    : HMatrixSolverOptions::FarField::hmatrix;
   const double n = double(faces);
   // Near field: each leaf meets O(1) leaves densely (measured on a sphere: 30 at η = 1, 20
   // at η = 2, 16 at η = 4, ≈ 30·η^−0.45) → 2 · that · leaf entries per row; low rank:
@@ -172,10 +179,19 @@ BoundarySolution solve_transmission_hmatrix(const geometry::SurfaceMesh& mesh,
   if (far_field == FarField::automatic) {
     const std::uint64_t budget = memory_budget_bytes(options.max_memory_bytes);
     const std::uint64_t factored = estimate(FarField::hmatrix);
-    // Below a few levels of large clusters the H² form saves nothing (the estimate knows).
-    far_field = budget == 0 || factored <= budget || factored <= estimate(FarField::nested)
+    // Below a few levels of large clusters the H² form saves nothing (the estimate knows);
+    // its bases and couplings are in single precision, which a tolerance below 1e−6 rules
+    // out (single_precision off).
+    far_field = budget == 0 || factored <= budget || !options.single_precision ||
+                        factored <= estimate(FarField::nested)
                     ? FarField::hmatrix
                     : FarField::nested;
+  }
+  if (far_field == FarField::nested && !options.single_precision) {
+    throw InputError(
+        "the far field in the H² form (--far-field nested) is stored in single precision, "
+        "which perturbs a product by about 1e-7: use --tolerance 1e-6 or larger with it, or "
+        "--far-field hmatrix");
   }
   // The Krylov bases take 48·N bytes per step of the restart length. Where the whole does
   // not fit, a shorter restart is taken, down to kMinRestart: GMRES(m) is full GMRES for its
@@ -232,13 +248,14 @@ BoundarySolution solve_transmission_hmatrix(const geometry::SurfaceMesh& mesh,
   double far_seconds = 0.0;
   const HierarchicalMatrix laplace = [&] {
     const GalerkinBlockGenerator<LaplaceKernel> generator(LaplaceKernel{}, panels, tree);
-    if (far_field == FarField::nested) {
+    if (!nested_blocks.empty()) {
+      const auto far_start = Clock::now();
       NestedFarFieldOptions far_options;
       far_options.aca_tolerance = options.aca_tolerance;
       far.emplace(tree, nested_blocks, generator, far_options, progress);
       partition.dense.insert(partition.dense.end(), far->uncompressed().begin(),
                              far->uncompressed().end());
-      far_seconds = seconds_since(interior_start);
+      far_seconds = seconds_since(far_start);
     }
     return HierarchicalMatrix(
         tree, tree, partition, generator,
@@ -299,7 +316,15 @@ BoundarySolution solve_transmission_hmatrix(const geometry::SurfaceMesh& mesh,
       {"preconditioner", preconditioner.bytes() + (coarse ? coarse->bytes() : 0)}};
   for (const auto& [part, bytes] : solution.report.operator_parts)
     solution.report.operator_bytes += bytes;
-  solution.report.compression = laplace.stats().compression();
+  // Stored over dense entries of the Laplace row, the H² part's bases and couplings included.
+  solution.report.compression =
+      hstats.full_entries > 0
+          ? double(hstats.dense_entries + hstats.low_rank_entries +
+                   (far ? far->stats().leaf_basis_entries + far->stats().transfer_entries +
+                              far->stats().coupling_entries
+                        : 0)) /
+                double(hstats.full_entries)
+          : 0.0;
 
   // The three directions share the operator: their GMRES run in lockstep (gmres_columns),
   // so each step reads the H-matrix, the sparse exterior matrix and the preconditioner's
@@ -373,8 +398,11 @@ BoundarySolution solve_transmission_hmatrix(const geometry::SurfaceMesh& mesh,
       msg << "hierarchical-matrix BEM solve (direction " << i + 1 << "): GMRES reached relative "
           << (options.preconditioner_side == PreconditionerSide::left ? "preconditioned " : "")
           << "residual " << result.preconditioned_residual << " after " << result.iterations
-          << " iterations, tolerance " << options.tolerance
-          << "; check the mesh for badly shaped faces or use --solver dense on a coarser mesh";
+          << " iterations, tolerance " << options.tolerance;
+      if (fitted.restart < options.restart)
+        msg << " (GMRES restarted every " << fitted.restart << " steps instead of "
+            << options.restart << " to fit in memory)";
+      msg << "; check the mesh for badly shaped faces or use --solver dense on a coarser mesh";
       throw NumericalError(msg.str());
     }
     for (Eigen::Index p = 0; p < n; ++p) {

@@ -6,7 +6,9 @@
 //   [  ½M − Kκ    Vκ ] [q] = [ Vκ g ],   g = n_i/ã,
 //
 // with the Laplace block row [−K0 | V0] as a hierarchical matrix compressed by adaptive
-// cross approximation (bem/hierarchical/hierarchical_matrix.hpp), the Yukawa block row as a
+// cross approximation (bem/hierarchical/hierarchical_matrix.hpp; on large meshes its far
+// field between large clusters in the H² form, bem/hierarchical/nested_far_field.hpp,
+// HMatrixSolverOptions::far_field), the Yukawa block row as a
 // sparse near-field matrix (bem/hierarchical/yukawa_near_field.hpp; the exponential decay
 // makes it exactly as sparse as the dense path's own dropping rule), and restarted GMRES
 // (bem/hierarchical/gmres.hpp) with a two-level preconditioner: a coarse space of
@@ -54,6 +56,9 @@ struct HMatrixSolverOptions {
   /// Panels per cluster of the coarse space (bem/hierarchical/cluster_coarse_space.hpp);
   /// 0 = the blocks alone (block Jacobi: more iterations, growing with N).
   Eigen::Index coarse_cluster = ClusterCoarseSpace::kDefaultClusterSize;
+  /// GMRES restart length. Where the Krylov bases would not fit in the memory allowed, the
+  /// solver takes a shorter one, in steps of 10 down to 30, and reports it
+  /// (SolveReport::restart).
   int restart = 60;
   int max_iterations = 600;
   /// The preconditioner's side in GMRES (bem/hierarchical/gmres.hpp), which sets what
@@ -84,12 +89,13 @@ struct HMatrixSolverOptions {
 /// Bytes the fast path is expected to hold for `faces` faces (the guard's estimate: near
 /// field and low-rank factors at a typical rank, the exterior matrix of `exterior_pairs`
 /// panel pairs in `exterior_runs` runs (yukawa_near_field_rows counts them),
-/// preconditioner, Krylov bases), with the far field kept as `far_field` (hmatrix or
-/// nested; automatic is taken as hmatrix).
+/// preconditioner, Krylov bases of options.restart steps), with the far field kept as
+/// `far_field`: hmatrix, nested, or automatic for options.far_field (its own automatic taken
+/// as hmatrix).
 std::uint64_t hmatrix_solver_memory_estimate(
     Eigen::Index faces, std::uint64_t exterior_pairs, std::uint64_t exterior_runs,
     const HMatrixSolverOptions& options,
-    HMatrixSolverOptions::FarField far_field = HMatrixSolverOptions::FarField::hmatrix);
+    HMatrixSolverOptions::FarField far_field = HMatrixSolverOptions::FarField::automatic);
 
 /// Solves for s_1, s_2, s_3 on a closed, outward-oriented mesh. Throws ResourceError if the
 /// estimate does not fit and NumericalError if GMRES does not reach the tolerance or the

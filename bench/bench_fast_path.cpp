@@ -10,7 +10,8 @@
 //   bench_fast_path entry-costs FACES     (where a row of the operators spends its time)
 //   bench_fast_path nested-bases sphere|box FACES [--aca E] [--eta H] [--leaf L] [--basis T]
 //                   (the Laplace far field in the H² form against the H-matrix's factors)
-//   bench_fast_path nested-far-field sphere|box FACES [--aca E] [--basis T] [--compare]
+//   bench_fast_path nested-far-field sphere|box FACES [--aca E] [--basis T] [--min-cluster S]
+//   [--compare]
 //                   (the H² far field built from the kernel, never holding the H-matrix)
 //   bench_fast_path interior sphere|box FACES POINTS [--solve] [--order P] [--theta T]
 //                   [--leaf L] [--negligible D] [--reference M] [--sweep]      (evaluate_potential
@@ -520,19 +521,22 @@ int nested_bases(int argc, char** argv) {
 /// The Laplace row's far field [−K0 | V0] in the H² form built from the kernel
 /// (bem/hierarchical/nested_far_field.hpp), on the sphere or the thin-walled box:
 ///
-///   bench_fast_path nested-far-field sphere|box FACES [--aca E] [--basis T] [--compare]
+///   bench_fast_path nested-far-field sphere|box FACES [--aca E] [--basis T] [--min-cluster S]
+///   [--compare]
 ///
 /// prints the construction's time (row and column sides), the entries and bytes, the peak
 /// RSS after the construction (nothing else large is held: the tree, the panels and the
 /// generator's tables), the time of one far-field product with three vectors (best of
 /// three), and ‖A_b − Q S Pᵀ‖/‖A_b‖ against the operator's entries on about 200 blocks.
 /// With --compare, afterwards, the solver's H-matrix (narrow factors) for its far-field bytes
-/// and product time.
+/// and product time. With --min-cluster S (default 0) the blocks with a cluster of fewer
+/// than S panels are H-matrix factors instead (small_low_rank_mb, small_dense_mb); the H²
+/// form's uncompressed blocks (uncompressed_blocks) are counted, not stored.
 int nested_far_field(int argc, char** argv) {
   if (argc < 4) {
     std::fprintf(stderr,
                  "usage: bench_fast_path nested-far-field sphere|box FACES [--aca E] [--basis T] "
-                 "[--compare]\n");
+                 "[--min-cluster S] [--compare]\n");
     return 2;
   }
   const std::string shape = argv[2];
@@ -679,6 +683,12 @@ int benchmark(int argc, char** argv) {
     else if (a == "--coarse" && i + 1 < argc) options.coarse_cluster = std::atol(argv[++i]);
     else if (a == "--far-field" && i + 1 < argc) {
       const std::string f = argv[++i];
+      if (f != "nested" && f != "hmatrix" && f != "auto") {
+        std::fprintf(stderr,
+                     "bench_fast_path: --far-field must be auto, hmatrix or nested, got %s\n",
+                     f.c_str());
+        return 2;
+      }
       options.far_field = f == "nested"    ? bem::HMatrixSolverOptions::FarField::nested
                           : f == "hmatrix" ? bem::HMatrixSolverOptions::FarField::hmatrix
                                            : bem::HMatrixSolverOptions::FarField::automatic;
@@ -703,17 +713,19 @@ int benchmark(int argc, char** argv) {
     runs.push_back(run(p, s, options));
     const double cpu = cpu_seconds() - cpu_before;
     const Run& r = runs.back();
-    std::printf("{\"shape\": \"%s\", \"faces\": %ld, \"solver\": \"%s\", \"h0\": %.6g, "
-                "\"eta\": %.3g, \"leaf\": %ld, \"single_precision\": %s, "
-                "\"times\": {\"mesh\": %.3f, \"assemble\": %.3f, \"solve\": %.3f, \"features\": %.3f}, "
-                "\"iterations\": %d, \"residual\": %.3g, \"peak_rss_mb\": %.1f, \"operator_mb\": %.1f, "
-                "\"compression\": %.4f, \"error\": %.3e, \"cpu_seconds\": %.1f",
-                shape.c_str(), long(p.mesh.num_faces()), s.c_str(), p.h0, options.eta,
-                long(options.leaf_size), options.single_precision ? "true" : "false",
-                mesh_seconds, r.assemble,
-                r.solve, r.features, r.solution.report.iterations, r.solution.report.residual,
-                double(peak_resident_bytes()) / 1e6, double(r.solution.report.operator_bytes) / 1e6,
-                r.solution.report.compression, r.error, cpu);
+    std::printf(
+        "{\"shape\": \"%s\", \"faces\": %ld, \"solver\": \"%s\", \"h0\": %.6g, "
+        "\"eta\": %.3g, \"leaf\": %ld, \"single_precision\": %s, "
+        "\"times\": {\"mesh\": %.3f, \"assemble\": %.3f, \"solve\": %.3f, \"features\": %.3f}, "
+        "\"iterations\": %d, \"residual\": %.3g, \"peak_rss_mb\": %.1f, \"operator_mb\": %.1f, "
+        "\"compression\": %.4f, \"error\": %.3e, \"cpu_seconds\": %.1f, \"method\": \"%s\", "
+        "\"gmres_restart\": %d",
+        shape.c_str(), long(p.mesh.num_faces()), s.c_str(), p.h0, options.eta,
+        long(options.leaf_size), options.single_precision ? "true" : "false", mesh_seconds,
+        r.assemble, r.solve, r.features, r.solution.report.iterations, r.solution.report.residual,
+        double(peak_resident_bytes()) / 1e6, double(r.solution.report.operator_bytes) / 1e6,
+        r.solution.report.compression, r.error, cpu, r.solution.report.method.c_str(),
+        r.solution.report.restart);
     // Stage timings as a JSON object of seconds; nothing for the dense path.
     const auto print_stages = [](const char* name,
                                  const std::vector<std::pair<std::string, double>>& stages) {

@@ -67,8 +67,10 @@ class ClusterCoarseSpace {
   /// `storage`: how A E is kept (exact: M⁻¹ A P = P to rounding).
   /// `far`: the part of [−K0 | V0] kept in the H² form (bem/hierarchical/nested_far_field.hpp),
   /// if any, the rest being `laplace` (kept by reference too). Its share of A_c comes from
-  /// NestedFarField::grouped_sums, its share of A P y from its product with P y: the H²
-  /// product reads each basis and coupling once, a fraction of the whole operator's bytes.
+  /// NestedFarField::grouped_sums, its share of A P y from its product with P y: one H²
+  /// product per application, which reads the whole H² part once (at 10⁶ faces about a
+  /// sixth of the operators' bytes; the preconditioner stage of that run, 15.3 s for 17
+  /// applications, includes it: docs/benchmarks.md, sixteenth session).
   template <class Scalar>
   ClusterCoarseSpace(const ClusterTree& tree, const HierarchicalMatrix& laplace,
                      const YukawaNearField<Scalar>& yukawa, const Eigen::VectorXd& half_mass,

@@ -59,12 +59,15 @@ Eigen::MatrixXd leading_left_singular_vectors(const Eigen::MatrixXd& m, double t
     Eigen::Index small = 0;
     while (small < r && lambda(small) < resolved * lambda(r - 1))
       ++small;
-    // Below what the truncation may drop in total, nothing needs resolving.
-    if (small >= 2 && lambda.head(small).cwiseMax(0.0).sum() > tolerance2) {
+    if (small >= 1) {
+      // Their squared norms from the columns themselves (the eigenvalues are off by about
+      // u·λ_max there); below what the truncation may drop in total, nothing needs resolving.
       Eigen::MatrixXd c = m.transpose() * u.leftCols(small);
-      Eigen::MatrixXd w = u.leftCols(small);
-      orthogonalise_columns(c, w, tolerance2, resolved);
-      u.leftCols(small) = w;
+      if (small >= 2 && c.squaredNorm() > tolerance2) {
+        Eigen::MatrixXd w = u.leftCols(small);
+        orthogonalise_columns(c, w, tolerance2, resolved);
+        u.leftCols(small) = w;
+      }
       s.head(small) = c.colwise().norm().transpose();
     }
     std::vector<Eigen::Index> order(static_cast<std::size_t>(r));
@@ -162,7 +165,18 @@ struct SideBuilder {
     return m;
   }
 
+  /// build_subtree, with a failed allocation turned into `out_of_memory` (an exception
+  /// cannot leave an OpenMP task).
   std::vector<Projection> build(int t, std::vector<Contribution> active) const {
+    try {
+      return build_subtree(t, std::move(active));
+    } catch (const std::bad_alloc&) {
+      out_of_memory = true;
+      return {};
+    }
+  }
+
+  std::vector<Projection> build_subtree(int t, std::vector<Contribution> active) const {
     const Cluster& c = tree.cluster(t);
     if (out_of_memory || cancellation_requested())
       return {};
@@ -185,9 +199,18 @@ struct SideBuilder {
       if (!computed[i])
         continue;
       LowRankBlock& f = *computed[i];
+      if (f.rank() == 1) {
+        // recompress leaves rank-one factors as ACA made them (V's largest entry 1): give
+        // them the form of the others, V orthonormal.
+        const double v_norm = f.V.norm();
+        if (v_norm > 0.0) {
+          f.U *= v_norm;
+          f.V /= v_norm;
+        }
+      }
       Contribution a;
       a.block = mine[i];
-      const double norm = f.U.norm();  // ‖U Vᵀ‖_F: V is orthonormal (recompress)
+      const double norm = f.U.norm();  // ‖U Vᵀ‖_F: V is orthonormal
       const double scale = norm > 0.0 ? 1.0 / norm : 0.0;
       if (row_side) {
         a.weight = Eigen::VectorXd::Constant(f.rank(), scale);
@@ -332,6 +355,8 @@ NestedFarField::NestedFarField(const ClusterTree& tree, const std::vector<BlockI
       // S_b = (Q_τᵀU_b)(P_σᵀV_b)ᵀ, or its two factors where they hold fewer numbers.
       Eigen::MatrixXf& left = row_projection[b];
       Coupling& out = coupling[b];
+      BEMSHAPE_ASSERT(left.cols() == value.cols(),
+                      "the two sides' cross approximations of a block differ in rank");
       if (left.rows() * value.rows() <= (left.rows() + value.rows()) * left.cols()) {
         out.left = (left.cast<double>() * value.transpose()).cast<float>();
       } else {

@@ -16,7 +16,7 @@
 //
 // Construction, one side at a time, depth first over the cluster tree. Entering a cluster t,
 // the cross approximations of t's own blocks on this side are computed (the same ACA and the
-// same rank limit as the H-matrix's, approximate_admissible_block) and held, while t's
+// rank limit of the H-matrix with narrow factors, approximate_admissible_block) and held, while t's
 // subtree is built, together with those of t's ancestors: only the blocks of the clusters
 // on the current path are in memory, never the whole H-matrix. Leaving t (children first),
 // its basis (a leaf) or transfer matrix (an inner cluster) is the leading left singular
