@@ -36,7 +36,7 @@ inline void add_solver_choice_options(CLI::App& command, SolverChoice& choice) {
   command
       .add_option("--far-field", choice.far_field,
                   "How the hmatrix solver keeps the far field of the interior operators: hmatrix "
-                  "(fastest), nested (H2 form: about a third less memory, a slower assembly) or "
+                  "(fastest), nested (H2 form: about a third less far-field memory, a slower assembly) or "
                   "auto (nested only where hmatrix would not fit in memory)")
       ->check(CLI::IsMember({"auto", "hmatrix", "nested"}))
       ->capture_default_str();
