@@ -411,6 +411,20 @@ TEST_CASE("thickness clamped to 0: warned and counted exactly when the minimum i
   CHECK_THAT(fine_out, !Catch::Contains("clamped"));
 }
 
+TEST_CASE("thickness: the H² far field below --tolerance 1e-6 is refused, naming --far-field") {
+  const std::string mesh = ball_file(0.12, "nested_ball.stl");
+  // The H² form's bases are in single precision, which a tighter tolerance rules out.
+  const Run r = run_bemshape("thickness '" + mesh +
+                             "' --h0 0.3 --max-edge 0.12 --solver hmatrix --far-field nested "
+                             "--tolerance 1e-8 --quiet");
+  CAPTURE(r.out, r.err);
+  CHECK(r.exit_code == 2);
+  CHECK_THAT(r.err, Catch::Contains("--far-field nested") && Catch::Contains("--tolerance"));
+  const Run bad = run_bemshape("thickness '" + mesh + "' --h0 0.3 --far-field h3 --quiet");
+  CHECK(bad.exit_code != 0);
+  CHECK_THAT(bad.err, Catch::Contains("--far-field"));
+}
+
 TEST_CASE("solver hmatrix: the same thickness as --solver dense, GMRES reported in the JSON") {
   const std::string mesh = ball_file(0.12, "solver_ball.stl");
   const auto solve = [&](const std::string& solver) {
@@ -428,6 +442,8 @@ TEST_CASE("solver hmatrix: the same thickness as --solver dense, GMRES reported 
   CHECK(dense_report["solver"]["method"] == "dense-lu");
   CHECK(fast_report["solver"]["method"] == "hmatrix-gmres");
   CHECK(fast_report["solver"]["iterations"].get<int>() > 0);
+  CHECK(fast_report["solver"]["gmres_restart"].get<int>() == 60);  // nothing short of memory
+  CHECK(dense_report["solver"]["gmres_restart"].get<int>() == 0);
   CHECK(fast_report["solver"]["residual"].get<double>() <= 1e-8);
   // The tolerance bounds the preconditioned residual (GMRES preconditioned on the left); the
   // dense path reports its residual for both.
