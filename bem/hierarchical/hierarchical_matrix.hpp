@@ -68,9 +68,9 @@ Eigen::Index admissible_rank_limit(Eigen::Index rows, Eigen::Index cols, bool na
 
 /// The cross approximation of the admissible block (rows [row_begin, row_end), columns
 /// [col_begin, col_end) in tree order, o·|τ| × g·|σ| entries) the way the H-matrix computes
-/// it: blocks of at most 64 × 128 entries are filled whole first (into `filled`, otherwise
-/// left empty) and ACA reads them. Nothing if the rank reaches `max_rank`. Deterministic: the
-/// same block gives the same factors every time, whatever the thread.
+/// it: blocks of at most 64·128 entries (any shape) are filled whole first (into `filled`,
+/// otherwise left empty) and ACA reads them. Nothing if the rank reaches `max_rank`.
+/// Deterministic: the same block gives the same factors every time, whatever the thread.
 std::optional<LowRankBlock> approximate_admissible_block(
     const OperatorBlockGenerator& generator, Eigen::Index row_begin, Eigen::Index row_end,
     Eigen::Index col_begin, Eigen::Index col_end, double epsilon, Eigen::Index max_rank,
