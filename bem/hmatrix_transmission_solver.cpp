@@ -170,20 +170,19 @@ BoundarySolution solve_transmission_hmatrix(const geometry::SurfaceMesh& mesh,
       yukawa_near_field_rows(panels, tree, parameters.kappa, negligible);
   const double count_seconds = seconds_since(count_start);
   using FarField = HMatrixSolverOptions::FarField;
-  const auto estimate = [&](FarField far_field) {
+  const auto estimate = [&](const HMatrixSolverOptions& o, FarField far_field) {
     return hmatrix_solver_memory_estimate(n, std::uint64_t(exterior_rows.pairs.sum()),
-                                          std::uint64_t(exterior_rows.runs.sum()), options,
-                                          far_field);
+                                          std::uint64_t(exterior_rows.runs.sum()), o, far_field);
   };
+  const std::uint64_t budget = memory_budget_bytes(options.max_memory_bytes);
   FarField far_field = options.far_field;
   if (far_field == FarField::automatic) {
-    const std::uint64_t budget = memory_budget_bytes(options.max_memory_bytes);
-    const std::uint64_t factored = estimate(FarField::hmatrix);
+    const std::uint64_t factored = estimate(options, FarField::hmatrix);
     // Below a few levels of large clusters the H² form saves nothing (the estimate knows);
     // its bases and couplings are in single precision, which a tolerance below 1e−6 rules
     // out (single_precision off).
     far_field = budget == 0 || factored <= budget || !options.single_precision ||
-                        factored <= estimate(FarField::nested)
+                        factored <= estimate(options, FarField::nested)
                     ? FarField::hmatrix
                     : FarField::nested;
   }
@@ -197,19 +196,11 @@ BoundarySolution solve_transmission_hmatrix(const geometry::SurfaceMesh& mesh,
   // not fit, a shorter restart is taken, down to kMinRestart: GMRES(m) is full GMRES for its
   // first m iterations, and the solver needs 13–22 (docs/benchmarks.md).
   HMatrixSolverOptions fitted = options;
-  {
-    const std::uint64_t budget = memory_budget_bytes(options.max_memory_bytes);
-    while (budget > 0 && fitted.restart > kMinRestart &&
-           hmatrix_solver_memory_estimate(n, std::uint64_t(exterior_rows.pairs.sum()),
-                                          std::uint64_t(exterior_rows.runs.sum()), fitted,
-                                          far_field) > budget)
-      fitted.restart = std::max(kMinRestart, fitted.restart - 10);
-  }
-  require_memory(
-      hmatrix_solver_memory_estimate(n, std::uint64_t(exterior_rows.pairs.sum()),
-                                     std::uint64_t(exterior_rows.runs.sum()), fitted, far_field),
-      "the hierarchical-matrix BEM system of " + std::to_string(n) + " faces",
-      "use a coarser mesh (larger --max-edge)", options.max_memory_bytes);
+  while (budget > 0 && fitted.restart > kMinRestart && estimate(fitted, far_field) > budget)
+    fitted.restart = std::max(kMinRestart, fitted.restart - 10);
+  require_memory(estimate(fitted, far_field),
+                 "the hierarchical-matrix BEM system of " + std::to_string(n) + " faces",
+                 "use a coarser mesh (larger --max-edge)", options.max_memory_bytes);
 
   report_progress(progress, "assemble", 0.0);
   const auto interior_start = Clock::now();

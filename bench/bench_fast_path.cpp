@@ -389,6 +389,20 @@ int interior(int argc, char** argv) {
   return 0;
 }
 
+/// The best of three wall times of apply(y), y += A x for three vectors (the three
+/// directions of a solve) on n rows, y zeroed before each run [s].
+template <class Apply>
+double best_product_seconds(Eigen::Index n, const Apply& apply) {
+  double best = 1e300;
+  for (int repeat = 0; repeat < 3; ++repeat) {
+    Eigen::MatrixXd y = Eigen::MatrixXd::Zero(n, 3);
+    const auto start = Clock::now();
+    apply(y);
+    best = std::min(best, seconds(start));
+  }
+  return best;
+}
+
 /// The Laplace row's far field [−K0 | V0] in the H² form against the H-matrix, on the sphere
 /// or the thin-walled box of `faces` faces (bem/hierarchical/nested_cluster_basis.hpp):
 ///
@@ -427,16 +441,7 @@ int nested_bases(int argc, char** argv) {
   // Products with three vectors (the three directions of a solve), the best of three runs.
   const Eigen::Index n = p.mesh.num_faces();
   const Eigen::MatrixXd x = Eigen::MatrixXd::Random(n, 6);
-  const auto product_seconds = [&](const auto& apply) {
-    double best = 1e300;
-    for (int repeat = 0; repeat < 3; ++repeat) {
-      Eigen::MatrixXd y = Eigen::MatrixXd::Zero(n, 3);
-      const auto start = Clock::now();
-      apply(y);
-      best = std::min(best, seconds(start));
-    }
-    return best;
-  };
+  const auto product_seconds = [&](const auto& apply) { return best_product_seconds(n, apply); };
   bem::HierarchicalMatrixStats narrow;
   double solver_product = 0.0;
   {
@@ -584,16 +589,7 @@ int nested_far_field(int argc, char** argv) {
   const double small_seconds = seconds(t0);
   const Eigen::Index n = p.mesh.num_faces();
   const Eigen::MatrixXd x = Eigen::MatrixXd::Random(n, 6);
-  const auto product_seconds = [&](const auto& apply) {
-    double best = 1e300;
-    for (int repeat = 0; repeat < 3; ++repeat) {
-      Eigen::MatrixXd y = Eigen::MatrixXd::Zero(n, 3);
-      const auto start = Clock::now();
-      apply(y);
-      best = std::min(best, seconds(start));
-    }
-    return best;
-  };
+  const auto product_seconds = [&](const auto& apply) { return best_product_seconds(n, apply); };
   const double h2_product = product_seconds([&](Eigen::MatrixXd& y) { h2.multiply_add(x, y); });
   const double small_product =
       product_seconds([&](Eigen::MatrixXd& y) { small_blocks.multiply_add(x, y); });

@@ -532,12 +532,8 @@ Eigen::MatrixXd NestedFarField::grouped_sums(const std::vector<Eigen::Index>& gr
   for (std::size_t b = 0; b < blocks_.size(); ++b) {
     const Cluster& t = tree.cluster(blocks_[b].rows);
     const Cluster& s = tree.cluster(blocks_[b].cols);
-    const Coupling& cp = couplings_[b];
-    const Eigen::MatrixXd coupling =
-        cp.right.size() == 0
-            ? Eigen::MatrixXd(cp.left.cast<double>())
-            : Eigen::MatrixXd(cp.left.cast<double>() * cp.right.cast<double>().transpose());
-    const Eigen::MatrixXd left = row_sums[std::size_t(blocks_[b].rows)].transpose() * coupling;
+    const Eigen::MatrixXd left =
+        row_sums[std::size_t(blocks_[b].rows)].transpose() * couplings_[b].matrix();
     const Eigen::Index nr = met(t), nc = met(s);
     const Eigen::MatrixXd& right = column_sums[std::size_t(blocks_[b].cols)];
     for (int d = 0; d < g; ++d)
@@ -545,6 +541,12 @@ Eigen::MatrixXd NestedFarField::grouped_sums(const std::vector<Eigen::Index>& gr
           left * right.middleCols(d * nc, nc);
   }
   return sums;
+}
+
+Eigen::MatrixXd NestedFarField::Coupling::matrix() const {
+  if (right.size() == 0)
+    return left.cast<double>();
+  return left.cast<double>() * right.cast<double>().transpose();
 }
 
 Eigen::MatrixXd NestedFarField::expand(const Side& side, int g, int c) const {
@@ -566,12 +568,7 @@ Eigen::MatrixXd NestedFarField::expand(const Side& side, int g, int c) const {
 }
 
 Eigen::MatrixXd NestedFarField::block(std::size_t b) const {
-  const Coupling& s = couplings_[b];
-  const Eigen::MatrixXd coupling =
-      s.right.size() == 0
-          ? Eigen::MatrixXd(s.left.cast<double>())
-          : Eigen::MatrixXd(s.left.cast<double>() * s.right.cast<double>().transpose());
-  return expand(rows_, 1, blocks_[b].rows) * coupling *
+  return expand(rows_, 1, blocks_[b].rows) * couplings_[b].matrix() *
          expand(columns_, densities_, blocks_[b].cols).transpose();
 }
 

@@ -116,6 +116,8 @@ class NestedFarField {
   struct Coupling {
     Eigen::MatrixXf left;   ///< S_b (k_τ × k_σ), or its left factor Q_τᵀU_b (k_τ × k_b)
     Eigen::MatrixXf right;  ///< empty, or the right factor P_σᵀV_b (k_σ × k_b)
+    /// S_b in double precision, k_τ × k_σ.
+    Eigen::MatrixXd matrix() const;
   };
   /// Cluster c's basis in explicit form (g|c| × k_c).
   Eigen::MatrixXd expand(const Side& side, int g, int c) const;
