@@ -24,6 +24,7 @@
 #include "apps/solver_mesh_options.hpp"
 #include "apps/stage_times.hpp"
 #include "apps/surface_features.hpp"
+#include "apps/thickness_html_report.hpp"
 #include "apps/thickness_statistics.hpp"
 #include "core/errors.hpp"
 #include "core/huge_pages.hpp"
@@ -47,6 +48,7 @@ struct ThicknessOptions {
   std::string output;
   std::string solver_output;
   std::string report_path;
+  std::string html_path;
   int threads = 0;
   bool quiet = false;
   std::uint64_t max_memory_bytes = 0;
@@ -246,6 +248,23 @@ nlohmann::json report_json(const ThicknessOptions& options, double h0, const Bou
       {"memory", {{"peak_mb", peak_mb}, {"heap_huge_pages", heap_uses_huge_pages()}}}};
 }
 
+/// The parameters table of the HTML report.
+std::vector<std::pair<std::string, std::string>> html_parameters(const ThicknessOptions& options,
+                                                                 double h0,
+                                                                 const BoundarySolveRun& run) {
+  return {{"input", options.input},
+          {"h0", number_text(h0, 6)},
+          {"a", number_text(options.a, 6)},
+          {"measure", options.measure},
+          {"min thickness",
+           options.min_thickness ? number_text(*options.min_thickness, 6) : "none"},
+          {"max edge", number_text(run.max_edge, 6) + " (" + run.max_edge_rule + ")"},
+          {"solver faces", std::to_string(run.solver_mesh.num_faces())},
+          {"input faces", std::to_string(run.input.report.faces)},
+          {"solver", run.solution.report.method},
+          {"bemshape", BEMSHAPE_VERSION}};
+}
+
 /// Regions listed in the printed report; the JSON report lists all of them.
 constexpr std::size_t kPrintedRegions = 10;
 
@@ -331,6 +350,7 @@ void run_thickness(const ThicknessOptions& options, int& exit_code) {
   const OutputFormat solver_format = output_format(options.solver_output);
   require_writable_folder(options.solver_output, "--solver-output");
   require_writable_folder(options.report_path, "--report");
+  require_writable_folder(options.html_path, "--html");
   if (options.threads < 0)
     throw InputError("--threads must be positive, got " + std::to_string(options.threads));
   if (options.threads > 0)
@@ -378,6 +398,18 @@ void run_thickness(const ThicknessOptions& options, int& exit_code) {
       report_progress(display.callback(), "write solver mesh", 0.0);
       write_output(options.solver_output, solver_format, run.solver_mesh, solver_features, result);
     });
+  if (!options.html_path.empty())
+    times.time("write", [&] {
+      report_progress(display.callback(), "write HTML report", 0.0);
+      output::write_html_report(
+          options.html_path,
+          thickness_html_report({fs::path(options.input).filename().string(),
+                                 result.measure_column, &run.solver_mesh,
+                                 solver_features.vertex.col(result.column), result.solver_face,
+                                 features::kMaxThicknessFactor * h0, result.statistics,
+                                 result.regions, options.min_thickness,
+                                 html_parameters(options, h0, run)}));
+    });
   display.finish();
   const double peak_mb = double(peak_resident_bytes()) / 1e6;
   if (!options.report_path.empty())
@@ -418,6 +450,9 @@ void register_thickness_command(CLI::App& app, int& exit_code) {
                   "Also write the thickness on the refined solver mesh (.vtp, .ply, .csv): the "
                   "values the statistics are computed from, before mapping to the input mesh");
   cmd->add_option("--report", options->report_path, "Also write the report as JSON to this file");
+  cmd->add_option("--html", options->html_path,
+                  "Also write a self-contained HTML page (one file, no network): the solver mesh "
+                  "coloured by thickness, the thin regions, the histogram and the verdict");
   cmd->add_option("--threads", options->threads, "Number of threads (default: all cores)");
   cmd->add_flag("--quiet", options->quiet, "No progress on stderr");
   add_max_memory_option(*cmd, options->max_memory_bytes);

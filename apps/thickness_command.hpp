@@ -1,6 +1,7 @@
 #pragma once
 // `bemshape thickness INPUT [--h0 L] [--a 0.2] [--measure principal|paper]
 //  [--min-thickness T] [--max-edge E] [-o OUT.vtp|.ply|.csv] [--report REPORT.json]
+//  [--html REPORT.html]
 //  [--threads N] [--quiet] [--max-memory SIZE] [--timeout S]`: the local wall thickness of a
 // solid part on its surface, and optionally the CAD minimum-wall-thickness check.
 //

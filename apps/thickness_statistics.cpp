@@ -105,6 +105,7 @@ std::vector<ThinRegion> thin_regions(const geometry::SurfaceMesh& mesh,
       region.min_location = centroid;
     }
     ++region.faces;
+    region.face_indices.push_back(static_cast<int>(f));
     region.area += area;
     region.centroid += area * centroid;
   }

@@ -45,6 +45,7 @@ struct ThinRegion {
   double minimum = 0.0;                                    ///< thinnest face value [model units]
   Eigen::Vector3d min_location = Eigen::Vector3d::Zero();  ///< centroid of the thinnest face
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();      ///< area-weighted centroid
+  std::vector<int> face_indices;                           ///< the `faces` faces, ascending
 };
 
 /// Every edge-connected set of faces with thickness < threshold, most severe first.

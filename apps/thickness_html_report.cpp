@@ -1,0 +1,88 @@
+#include "apps/thickness_html_report.hpp"
+
+#include <cmath>
+#include <limits>
+
+#include "apps/area_histogram.hpp"
+#include "apps/report_text.hpp"
+#include "core/errors.hpp"
+
+namespace bemshape::apps {
+namespace {
+
+/// The values with those at or above `unmeasurable_from` replaced by NaN (no colour).
+Eigen::VectorXd without_unmeasurable(const Eigen::VectorXd& values, double unmeasurable_from) {
+  Eigen::VectorXd out = values;
+  for (Eigen::Index i = 0; i < out.size(); ++i)
+    if (!(out(i) < unmeasurable_from))
+      out(i) = std::numeric_limits<double>::quiet_NaN();
+  return out;
+}
+
+output::HtmlRegion html_region(const geometry::SurfaceMesh& mesh, const ThinRegion& region,
+                               int rank) {
+  output::HtmlRegion r;
+  r.kind = "thin";
+  r.rank = rank;
+  r.area = region.area;
+  r.extreme = region.minimum;
+  r.extreme_location = region.min_location;
+  r.centroid = region.centroid;
+  r.box_min.setConstant(std::numeric_limits<double>::infinity());
+  r.box_max.setConstant(-std::numeric_limits<double>::infinity());
+  for (const int f : region.face_indices)
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector3d p = mesh.corner(f, k);
+      r.box_min = r.box_min.cwiseMin(p);
+      r.box_max = r.box_max.cwiseMax(p);
+    }
+  if (region.face_indices.empty())
+    r.box_min = r.box_max = region.min_location;
+  r.faces = region.face_indices;
+  return r;
+}
+
+}  // namespace
+
+output::HtmlReport thickness_html_report(const ThicknessHtmlInput& input) {
+  if (input.mesh == nullptr)
+    throw InternalError("thickness_html_report: no mesh");
+  const geometry::SurfaceMesh& mesh = *input.mesh;
+  output::HtmlReport report;
+  report.title = input.title;
+  report.units = "input file units";
+  report.quantity = "thickness " + input.measure;
+  report.vertices = mesh.vertices();
+  report.faces = mesh.faces();
+  report.vertex_values = without_unmeasurable(input.vertex_thickness, input.unmeasurable_from);
+  report.face_values = without_unmeasurable(input.face_thickness, input.unmeasurable_from);
+  report.colour_minimum = input.statistics.minimum;
+  report.colour_maximum = input.statistics.maximum;
+  report.min_thickness = input.min_thickness;
+  for (std::size_t i = 0; i < input.thin_regions.size(); ++i)
+    report.regions.push_back(html_region(mesh, input.thin_regions[i], static_cast<int>(i) + 1));
+  const AreaHistogram h = area_histogram(input.face_thickness, mesh.face_areas(),
+                                         kHtmlHistogramBins, input.unmeasurable_from);
+  report.histogram = {h.edges, h.area, h.other_area};
+  report.parameters = input.parameters;
+  if (input.min_thickness) {
+    const std::string threshold = number_text(*input.min_thickness, 6);
+    if (input.thin_regions.empty()) {
+      report.verdict = "PASS";
+      report.verdict_text = "no wall thinner than " + threshold + ".";
+    } else {
+      double area = 0.0;
+      for (const ThinRegion& r : input.thin_regions)
+        area += r.area;
+      const std::size_t n = input.thin_regions.size();
+      report.verdict = "FAIL";
+      report.verdict_text = std::to_string(n) + " region" + (n == 1 ? "" : "s") +
+                            " thinner than " + threshold + ", total area " +
+                            number_text(area, 6) + "; thinnest " +
+                            number_text(input.thin_regions.front().minimum, 6) + ".";
+    }
+  }
+  return report;
+}
+
+}  // namespace bemshape::apps

@@ -1,0 +1,38 @@
+#pragma once
+// The HTML report of `bemshape thickness --html FILE`: the thickness on the solver mesh (the
+// values the statistics and regions are computed from), its thin regions, the histogram of
+// area per thickness range, the parameters and the verdict, gathered into the writer's plain
+// input (apps/output/html_report.hpp).
+
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "apps/output/html_report.hpp"
+#include "apps/thickness_statistics.hpp"
+#include "geometry/surface_mesh.hpp"
+
+namespace bemshape::apps {
+
+/// Bins of the report's histogram of area per thickness range (at most; round widths).
+constexpr int kHtmlHistogramBins = 12;
+
+struct ThicknessHtmlInput {
+  std::string title;    ///< the input file's name
+  std::string measure;  ///< "h_p" or "h_f"
+  const geometry::SurfaceMesh* mesh = nullptr;  ///< the solver mesh
+  Eigen::VectorXd vertex_thickness;             ///< #V of *mesh [model units]
+  Eigen::VectorXd face_thickness;               ///< #F of *mesh [model units]
+  double unmeasurable_from = 0.0;  ///< values at or above it have no thickness (drawn grey)
+  ThicknessStatistics statistics;
+  std::vector<ThinRegion> thin_regions;  ///< with their face lists, most severe first
+  std::optional<double> min_thickness;   ///< --min-thickness
+  std::vector<std::pair<std::string, std::string>> parameters;
+};
+
+output::HtmlReport thickness_html_report(const ThicknessHtmlInput& input);
+
+}  // namespace bemshape::apps
