@@ -3,7 +3,8 @@
 // extreme value, marks it with a sphere and highlights and outlines the region's faces.
 //
 // window.bemshapeViewer is the page's state for scripts and tests: { ready, error,
-// timings: { decode, build, firstRender } [ms since navigation start or durations],
+// timings: { decode, build: durations [ms]; firstRender: ms from navigation start to the
+// first picture drawn },
 // selectRegion(i), resetView(), selected, flying }.
 
 import {
@@ -32,10 +33,15 @@ function fail(error) {
   throw error;
 }
 
-function webglRenderer(canvasParent) {
+/// Faces above which the surface is drawn without multisampling: software WebGL
+/// (SwiftShader) then draws a 10⁶-face surface in a fraction of the time, and at such
+/// densities the triangles are smaller than pixels anyway.
+const antialiasFaceLimit = 300000;
+
+function webglRenderer(canvasParent, faces) {
   let renderer;
   try {
-    renderer = new WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
+    renderer = new WebGLRenderer({ antialias: faces <= antialiasFaceLimit, preserveDrawingBuffer: true });
   } catch (error) {
     throw new Error(`this browser gives no WebGL context (${error.message}); open the file in a browser with WebGL enabled`);
   }
@@ -87,7 +93,7 @@ function start() {
   fillHistogram(meta);
 
   const view = document.getElementById('view');
-  const renderer = webglRenderer(view);
+  const renderer = webglRenderer(view, meta.faces);
   ColorManagement.enabled = false;  // the colours are the colour bar's sRGB values as they are
   const scene = new Scene();
   scene.background = new Color(0xeef1f4);
@@ -173,8 +179,11 @@ function start() {
   const render = () => renderer.render(scene, camera);
   controls.addEventListener('change', render);
 
+  let size = '';
   const resize = () => {
     const w = Math.max(view.clientWidth, 1), h = Math.max(view.clientHeight, 1);
+    if (`${w}x${h}` === size) return;
+    size = `${w}x${h}`;
     renderer.setSize(w, h, false);
     renderer.domElement.style.width = '100%';
     renderer.domElement.style.height = '100%';
@@ -188,7 +197,7 @@ function start() {
   const fitDistance = (r) => {
     const vertical = (camera.fov * Math.PI) / 360;
     const horizontal = Math.atan(Math.tan(vertical) * camera.aspect);
-    return (1.1 * r) / Math.sin(Math.min(vertical, horizontal));
+    return (1.02 * r) / Math.sin(Math.min(vertical, horizontal));
   };
 
   let flight = null;
@@ -262,12 +271,14 @@ function start() {
   state.timings.build = performance.now() - t0 - state.timings.decode;
   state.resetView(false);
   resize();
+  // WebGL runs asynchronously: reading one pixel back waits until the first picture is
+  // drawn, so that firstRender is when it exists, not when it was asked for.
+  const gl = renderer.getContext();
+  gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, new Uint8Array(4));
+  state.timings.firstRender = performance.now();
   document.getElementById('status').remove();
-  requestAnimationFrame(() => {
-    state.timings.firstRender = performance.now();
-    state.ready = true;
-    document.body.dataset.state = 'ready';
-  });
+  state.ready = true;
+  document.body.dataset.state = 'ready';
 }
 
 try {

@@ -80,7 +80,7 @@ export function fillHistogram(meta) {
     box.innerHTML = '<p class="empty">No histogram in this report.</p>';
     return;
   }
-  const W = 330, H = 150, left = 44, right = 8, top = 10, bottom = 30;
+  const W = 330, H = 160, left = 44, right = 8, top = 20, bottom = 30;
   const chart = svg('svg', { viewBox: `0 0 ${W} ${H}`, role: 'img', 'aria-label': 'histogram of area per thickness range' });
   chart.id = 'histogram-chart';
   const x0 = edges[0], x1 = edges[edges.length - 1];
@@ -109,7 +109,7 @@ export function fillHistogram(meta) {
   for (const a of niceTicks(0, top_area, 3)) {
     chart.append(svg('text', { x: left - 4, y: y(a) + 3, 'text-anchor': 'end' }, numberText(a, 3)));
   }
-  chart.append(svg('text', { x: 2, y: top - 1 }, `${meta.units}²`));
+  chart.append(svg('text', { x: 2, y: 10 }, `area [${meta.units}²]`));
   for (const t of [meta.min_thickness, meta.max_thickness]) {
     if (t === null || t === undefined || t < x0 || t > x1) continue;
     chart.append(svg('line', { x1: x(t), x2: x(t), y1: top, y2: H - bottom, stroke: '#ff2d55', 'stroke-dasharray': '4 3' }));
