@@ -18,6 +18,7 @@ import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { colourValues } from './colour_map.js';
 import { fillColourBar, fillHeader, fillHistogram, fillRegions } from './panel.js';
 import { readReport } from './report_data.js';
+import { clearView } from './view_direction.js';
 
 const pick = 0xff2d55;
 const flightMs = 700;
@@ -244,9 +245,9 @@ function start() {
     outline.geometry.setIndex(new BufferAttribute(boundaryEdges(indices, faces), 1));
     highlight.visible = outline.visible = true;
 
-    // Look at the extreme from outside, along the outward normal of the region's face nearest
-    // to it, tilted towards the current view so that the flight turns the part no more than
-    // needed.
+    // Look at the extreme from outside, near the outward normal of the region's face nearest
+    // to it and towards the current view, along a line of sight the surface does not block
+    // (view_direction.js).
     const extreme = new Vector3().fromArray(region.extreme_location).sub(origin);
     let nearest = -1, best = Infinity;
     for (const f of faces) {
@@ -255,17 +256,15 @@ function start() {
     }
     const current = camera.position.clone().sub(controls.target).normalize();
     const normal = nearest >= 0 ? faceNormal(positions, indices, nearest) : current.clone();
-    const direction = normal.clone().multiplyScalar(0.8).addScaledVector(current, 0.2);
-    if (direction.lengthSq() < 1e-6) direction.copy(normal);
-    direction.normalize();
     const boxMin = new Vector3().fromArray(region.box_min), boxMax = new Vector3().fromArray(region.box_max);
     const regionRadius = 0.5 * boxMin.distanceTo(boxMax);
     const viewRadius = Math.min(Math.max(regionRadius, 0.12 * radius), radius);
-    const distance = fitDistance(viewRadius);
+    const sight = clearView(positions, indices, extreme.toArray(), normal.toArray(), current.toArray(),
+                           fitDistance(viewRadius));
     marker.scale.setScalar(0.025 * viewRadius);
     marker.position.copy(extreme);
     marker.visible = true;
-    flyTo(extreme, extreme.clone().addScaledVector(direction, distance));
+    flyTo(extreme, extreme.clone().addScaledVector(new Vector3().fromArray(sight.direction), sight.distance));
   };
 
   state.timings.build = performance.now() - t0 - state.timings.decode;

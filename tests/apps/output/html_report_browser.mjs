@@ -2,7 +2,7 @@
 // playwright-core (viewer/node_modules), WebGL by SwiftShader (software, no GPU).
 //
 //   node html_report_browser.mjs --bemshape BIN --sample BIN --viewer DIR --plate STL --out DIR
-//        [--sizes 100000,1000000] [--screenshots DIR] [--max-edge 40]
+//        [--sizes 100000,1000000] [--screenshots DIR [--docs-region K]] [--max-edge 40]
 //
 // For each report (a real `bemshape thickness --html` run on the bundled plate, checked
 // against the same run's --report JSON, and a synthetic part written by
@@ -15,7 +15,8 @@
 //     region and shows the marker (its colour appears where it did not before).
 // Prints the file size and the time to first render of each report. --sizes adds synthetic
 // reports of those face counts (measurements, not part of ctest); --screenshots DIR keeps
-// the plate's overview and region pictures there (docs/images).
+// the plate's overview and region pictures there (docs/images; the region picture after
+// clicking region K + 1 when --docs-region K is given).
 import { execFileSync, spawnSync } from 'node:child_process';
 import { mkdirSync, readFileSync, statSync, writeFileSync } from 'node:fs';
 import { createRequire } from 'node:module';
@@ -121,9 +122,15 @@ async function checkReport(browser, file, name, expect) {
   check(after.differ > 0.1, `${name}: clicking region 1 changes ${(100 * after.differ).toFixed(0)} % of the pixels`);
   check(after.marker > before.marker + 1e-4, `${name}: marker and highlight shown (${(100 * before.marker).toFixed(2)} % -> ${(100 * after.marker).toFixed(2)} % of the pixels in the marker colour)`);
   check(await page.locator('#regions button.region.selected').count() === 1, `${name}: the clicked region is marked selected`);
+  let docsRegion = region;
+  if (expect.docsRegion !== undefined) {
+    await page.click(`#regions button.region >> nth=${expect.docsRegion}`);
+    await page.waitForFunction((i) => window.bemshapeViewer.selected === i && !window.bemshapeViewer.flying, expect.docsRegion, { timeout: 30000 });
+    docsRegion = await page.screenshot();
+  }
   check(errors.length === 0, `${name}: no console or page errors${errors.length ? ': ' + errors.join(' | ') : ''}`);
   await page.close();
-  return { overview, region, firstRender };
+  return { overview, region: docsRegion, firstRender };
 }
 
 const started = Date.now();
@@ -147,7 +154,8 @@ const solverArea = plateReport.thickness.measured_area + plateReport.thickness.u
 check(Math.abs(histogramArea - solverArea) < 1e-9 * solverArea,
       `plate: histogram areas add up to the solver surface's area (${histogramArea.toFixed(3)} vs ${solverArea.toFixed(3)})`);
 
-const reports = [{ file: plateHtml, name: 'plate', expect: { verdict: 'FAIL', bins: embedded.histogram.area.length, regions: embedded.regions.length } }];
+const reports = [{ file: plateHtml, name: 'plate', expect: { verdict: 'FAIL', bins: embedded.histogram.area.length, regions: embedded.regions.length,
+                                                              docsRegion: args['docs-region'] !== undefined ? Number(args['docs-region']) : undefined } }];
 const sizes = [10000, ...(args.sizes ? args.sizes.split(',').map(Number) : [])];
 for (const faces of sizes) {
   const file = path.join(args.out, `sample_${faces}.html`);
