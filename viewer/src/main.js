@@ -3,8 +3,8 @@
 // extreme value, marks it with a sphere and highlights and outlines the region's faces.
 //
 // window.bemshapeViewer is the page's state for scripts and tests: { ready, error,
-// timings: { decode, build: durations [ms]; firstRender: ms from navigation start to the
-// first picture drawn },
+// timings: { decode, build, select (the last region's highlight and line of sight):
+// durations [ms]; firstRender: ms from navigation start to the first picture drawn },
 // selectRegion(i), resetView(), selected, flying }.
 
 import {
@@ -236,6 +236,7 @@ function start() {
   state.selectRegion = (i) => {
     const region = meta.regions[i];
     if (!region) throw new Error(`no region ${i}: the report has ${meta.regions.length}`);
+    const began = performance.now();
     state.selected = i;
     buttons.forEach((b, k) => b.classList.toggle('selected', k === i));
     const faces = report.regionFaces.subarray(region.face_offset, region.face_offset + region.face_count);
@@ -264,6 +265,7 @@ function start() {
     marker.scale.setScalar(0.025 * viewRadius);
     marker.position.copy(extreme);
     marker.visible = true;
+    state.timings.select = performance.now() - began;
     flyTo(extreme, extreme.clone().addScaledVector(new Vector3().fromArray(sight.direction), sight.distance));
   };
 

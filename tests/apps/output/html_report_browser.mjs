@@ -117,6 +117,7 @@ async function checkReport(browser, file, name, expect) {
 
   await page.click('#regions button.region >> nth=0');
   await page.waitForFunction(() => window.bemshapeViewer.selected === 0 && !window.bemshapeViewer.flying, null, { timeout: 30000 });
+  console.log(`     ${name}: region 1 (${expect.regionFaces} faces) prepared in ${(await page.evaluate(() => window.bemshapeViewer.timings.select)).toFixed(0)} ms`);
   const region = await page.screenshot();
   const after = await pixelStats(page, await page.locator('#view').screenshot(), overviewView);
   check(after.differ > 0.1, `${name}: clicking region 1 changes ${(100 * after.differ).toFixed(0)} % of the pixels`);
@@ -154,7 +155,7 @@ const solverArea = plateReport.thickness.measured_area + plateReport.thickness.u
 check(Math.abs(histogramArea - solverArea) < 1e-9 * solverArea,
       `plate: histogram areas add up to the solver surface's area (${histogramArea.toFixed(3)} vs ${solverArea.toFixed(3)})`);
 
-const reports = [{ file: plateHtml, name: 'plate', expect: { verdict: 'FAIL', bins: embedded.histogram.area.length, regions: embedded.regions.length,
+const reports = [{ file: plateHtml, name: 'plate', expect: { verdict: 'FAIL', bins: embedded.histogram.area.length, regions: embedded.regions.length, regionFaces: embedded.regions[0]?.face_count,
                                                               docsRegion: args['docs-region'] !== undefined ? Number(args['docs-region']) : undefined } }];
 const sizes = [10000, ...(args.sizes ? args.sizes.split(',').map(Number) : [])];
 for (const faces of sizes) {
@@ -163,7 +164,7 @@ for (const faces of sizes) {
   execFileSync(args.sample, [String(faces), file]);
   const meta = JSON.parse(/id="bemshape-report">(.*?)<\/script>/s.exec(readFileSync(file, 'utf8'))[1]);
   console.log(`     synthetic ${meta.faces} faces: written in ${Date.now() - t} ms`);
-  reports.push({ file, name: `synthetic ${meta.faces} faces`, expect: { verdict: 'FAIL', bins: meta.histogram.area.length, regions: meta.regions.length } });
+  reports.push({ file, name: `synthetic ${meta.faces} faces`, expect: { verdict: 'FAIL', bins: meta.histogram.area.length, regions: meta.regions.length, regionFaces: meta.regions[0]?.face_count } });
 }
 
 const browser = await chromium.launch({ executablePath: process.env.BEMSHAPE_CHROMIUM || '/usr/bin/chromium', args: chromiumArgs, headless: true });
