@@ -80,7 +80,7 @@ export function fillHistogram(meta) {
     box.innerHTML = '<p class="empty">No histogram in this report.</p>';
     return;
   }
-  const W = 330, H = 160, left = 44, right = 8, top = 20, bottom = 30;
+  const W = 330, H = 160, left = 44, right = 14, top = 20, bottom = 30;
   const chart = svg('svg', { viewBox: `0 0 ${W} ${H}`, role: 'img', 'aria-label': 'histogram of area per thickness range' });
   chart.id = 'histogram-chart';
   const x0 = edges[0], x1 = edges[edges.length - 1];
