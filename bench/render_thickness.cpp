@@ -1,17 +1,19 @@
 // render_thickness: a picture of a thickness map for the documentation. Reads a .vtp that
-// `bemshape thickness` wrote (-o or --solver-output: ASCII points, triangles and the point
-// array "thickness") and paints the surface in an oblique orthographic view with a z-buffer:
-// per-pixel linear interpolation of the vertex thickness, coloured with viridis
-// (apps/output/colour_map.hpp) and darkened by a Lambert factor for the shape, next to a
-// colour bar labelled with its ends and middle.
+// `bemshape thickness` wrote (-o or --solver-output: points, triangles and the point array
+// "thickness", raw appended binary or ASCII) and paints the surface in an oblique
+// orthographic view with a z-buffer: per-pixel linear interpolation of the vertex thickness,
+// coloured with viridis (apps/output/colour_map.hpp) and darkened by a Lambert factor for the
+// shape, next to a colour bar labelled with its ends and middle.
 //
 //   render_thickness THICKNESS.vtp OUT.png [MIN MAX] [AZIMUTH_DEG ELEVATION_DEG]
 //
 // MIN/MAX default to the range of the thickness array.
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <iostream>
 #include <limits>
@@ -29,8 +31,9 @@ using namespace bemshape;
 
 namespace {
 
-/// The numbers of the ASCII DataArray named by `marker` (`Name="…"`) or following it.
-std::vector<double> ascii_array(const std::string& xml, const std::string& marker) {
+/// The numbers of the DataArray named by `marker` (`Name="…"`) or following it: ASCII, or
+/// Float64/Int64 in the raw appended block (UInt64 byte counts, little-endian).
+std::vector<double> vtp_array(const std::string& xml, const std::string& marker) {
   const std::size_t at = xml.find(marker);
   if (at == std::string::npos) {
     std::cerr << "render_thickness: no " << marker << " in the .vtp\n";
@@ -38,12 +41,35 @@ std::vector<double> ascii_array(const std::string& xml, const std::string& marke
   }
   // A marker inside a DataArray tag (Name="…") names that array; otherwise take the next one.
   const bool in_tag = marker.starts_with("Name=");
-  const std::size_t start = xml.find('>', in_tag ? at : xml.find("<DataArray", at)) + 1;
-  std::istringstream in(xml.substr(start, xml.find("</DataArray>", start) - start));
+  const std::size_t tag = in_tag ? xml.rfind("<DataArray", at) : xml.find("<DataArray", at);
+  const std::size_t tag_end = xml.find('>', tag);
+  const std::string attributes = xml.substr(tag, tag_end - tag);
   std::vector<double> values;
-  double v;
-  while (in >> v)
+  if (attributes.find("format=\"appended\"") == std::string::npos) {
+    std::istringstream in(xml.substr(tag_end + 1, xml.find("</DataArray>", tag_end) - tag_end - 1));
+    double v;
+    while (in >> v)
+      values.push_back(v);
+    return values;
+  }
+  const std::size_t offset_at = attributes.find("offset=\"") + 8;
+  const std::size_t start =
+      xml.find('_', xml.find("<AppendedData")) + 1 + std::stoull(attributes.substr(offset_at));
+  std::uint64_t bytes = 0;
+  std::memcpy(&bytes, xml.data() + start, sizeof bytes);
+  const bool integer = attributes.find("type=\"Int64\"") != std::string::npos;
+  for (std::uint64_t b = 0; b < bytes; b += 8) {
+    const char* p = xml.data() + start + sizeof bytes + b;
+    double v = 0.0;
+    if (integer) {
+      std::int64_t i = 0;
+      std::memcpy(&i, p, 8);
+      v = static_cast<double>(i);
+    } else {
+      std::memcpy(&v, p, 8);
+    }
     values.push_back(v);
+  }
   return values;
 }
 
@@ -60,14 +86,14 @@ int main(int argc, char** argv) {
     std::cerr << "usage: render_thickness THICKNESS.vtp OUT.png [MIN MAX] [AZIMUTH ELEVATION]\n";
     return 2;
   }
-  std::ifstream file(argv[1]);
+  std::ifstream file(argv[1], std::ios::binary);
   std::stringstream text;
   text << file.rdbuf();
   const std::string xml = text.str();
-  const std::vector<double> points = ascii_array(xml, "<Points>");
-  const std::vector<double> corners = ascii_array(xml, "Name=\"connectivity\"");
+  const std::vector<double> points = vtp_array(xml, "<Points>");
+  const std::vector<double> corners = vtp_array(xml, "Name=\"connectivity\"");
   const std::string point_data = xml.substr(xml.find("<PointData>"));
-  const std::vector<double> values = ascii_array(point_data, "Name=\"thickness\"");
+  const std::vector<double> values = vtp_array(point_data, "Name=\"thickness\"");
   const auto nv = static_cast<Eigen::Index>(points.size() / 3);
   const auto nf = static_cast<Eigen::Index>(corners.size() / 3);
   Eigen::MatrixX3d vertices(nv, 3);

@@ -20,26 +20,29 @@ void write_ply(const std::filesystem::path& path, const Eigen::MatrixX3d& vertic
   if (field.size() != vertices.rows())
     throw InternalError("write_ply: field has " + std::to_string(field.size()) + " values for " +
                         std::to_string(vertices.rows()) + " vertices");
+  if (colouring.field_name == "quality")
+    throw InternalError("write_ply: the field may not be named 'quality', the name of its copy");
   std::string header = "ply\nformat binary_little_endian 1.0\n";
   if (!colouring.comment.empty())
     header += "comment " + colouring.comment + '\n';
   header += "element vertex " + std::to_string(vertices.rows()) + '\n';
   header += "property float x\nproperty float y\nproperty float z\n";
-  header += "property float " + colouring.field_name + '\n';
+  header += "property float " + colouring.field_name + "\nproperty float quality\n";
   header += "property uchar red\nproperty uchar green\nproperty uchar blue\n";
   header += "element face " + std::to_string(faces.rows()) + '\n';
   header += "property list uchar int vertex_indices\nend_header\n";
 
   const double range = colouring.colour_maximum - colouring.colour_minimum;
   std::vector<char> payload;
-  payload.reserve(static_cast<std::size_t>(vertices.rows() * 19 + faces.rows() * 13));
+  payload.reserve(static_cast<std::size_t>(vertices.rows() * 23 + faces.rows() * 13));
   const auto put = [&payload](const void* data, std::size_t bytes) {
     const auto* p = static_cast<const char*>(data);
     payload.insert(payload.end(), p, p + bytes);
   };
   for (Eigen::Index v = 0; v < vertices.rows(); ++v) {
-    const float values[4] = {static_cast<float>(vertices(v, 0)), static_cast<float>(vertices(v, 1)),
-                             static_cast<float>(vertices(v, 2)), static_cast<float>(field(v))};
+    const float values[5] = {static_cast<float>(vertices(v, 0)), static_cast<float>(vertices(v, 1)),
+                             static_cast<float>(vertices(v, 2)), static_cast<float>(field(v)),
+                             static_cast<float>(field(v))};
     put(values, sizeof values);
     const double t = range > 0.0 ? (field(v) - colouring.colour_minimum) / range : 0.5;
     const Rgb c = viridis(t);

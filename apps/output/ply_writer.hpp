@@ -3,11 +3,16 @@
 // that show vertex colours (MeshLab, Blender, CloudCompare):
 //
 //   element vertex #V: float x, y, z [model units]; float <field name> (e.g. thickness);
-//                      uchar red, green, blue (viridis, colour_map.hpp, of the field
-//                      between colour_minimum and colour_maximum, clamped)
+//                      float quality (the same values again); uchar red, green, blue
+//                      (viridis, colour_map.hpp, of the field between colour_minimum and
+//                      colour_maximum, clamped)
 //   element face #F:   list uchar int vertex_indices (counter-clockwise seen from outside)
 //
-// Payload size: #V·19 + #F·13 bytes after "end_header\n". Written atomically.
+// "quality" is the vertex property MeshLab (vcglib's PLY importer) loads as vertex quality,
+// which its Colorize by vertex Quality filter, quality histogram and selection by quality
+// work on; other programs see the named field.
+//
+// Payload size: #V·23 + #F·13 bytes after "end_header\n". Written atomically.
 
 #include <filesystem>
 #include <string>

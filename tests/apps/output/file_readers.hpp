@@ -2,8 +2,10 @@
 // Independent readers of the files bemshape writes (VTK XML PolyData and ImageData, binary
 // PLY), written from the format specifications for the tests: they check that a file is
 // well-formed (balanced XML tags, declared sizes equal to the payload) and return its
-// numbers so a test can compare them with what was written.
+// numbers so a test can compare them with what was written. What the programs users open
+// the files with make of them is tested by output/test_vtk_readers.py (VTK's readers).
 
+#include <algorithm>
 #include <array>
 #include <catch2/catch.hpp>
 #include <cstdint>
@@ -91,20 +93,83 @@ inline XmlElement parse_xml(const std::string& xml) {
   return root.children.front();
 }
 
-/// The numbers of an ASCII DataArray as #tuples×components.
+/// The numbers of an ASCII DataArray as #tuples×components. Int64 arrays must hold integers
+/// ("100000", never "1e+05").
 inline Eigen::MatrixXd ascii_array(const XmlElement& array) {
   const int components = std::stoi(array.attributes.at("NumberOfComponents"));
   CHECK(array.attributes.at("format") == "ascii");
+  const bool integer = array.attributes.at("type") == "Int64";
   std::istringstream in(array.text);
   std::vector<double> values;
   std::string token;
-  while (in >> token)
+  while (in >> token) {
+    if (integer)
+      REQUIRE(token.find_first_not_of("-0123456789") == std::string::npos);
     values.push_back(std::stod(token));
+  }
   REQUIRE(values.size() % components == 0);
   Eigen::MatrixXd m(static_cast<Eigen::Index>(values.size()) / components, components);
   for (Eigen::Index i = 0; i < m.size(); ++i)
     m(i / components, i % components) = values[static_cast<std::size_t>(i)];
   return m;
+}
+
+/// The start of the raw appended block of a VTK XML file (the byte after "_").
+inline std::size_t appended_start(const XmlElement& file) {
+  const XmlElement& data = file.child("AppendedData");
+  CHECK(data.attributes.at("encoding") == "raw");
+  const std::size_t underscore = data.text.find('_');
+  REQUIRE(underscore != std::string::npos);
+  return underscore + 1;
+}
+
+/// The numbers of a DataArray in the raw appended block (UInt64 byte-count header), Int64 or
+/// Float64 or Float32, as #tuples×components doubles; REQUIREs that the block holds exactly
+/// `tuples` tuples. `end` grows to the end of the array's block.
+inline Eigen::MatrixXd appended_array(const XmlElement& array, const XmlElement& file,
+                                      Eigen::Index tuples, std::size_t& end) {
+  CHECK(array.attributes.at("format") == "appended");
+  const int components = std::stoi(array.attributes.at("NumberOfComponents"));
+  const std::string& type = array.attributes.at("type");
+  REQUIRE((type == "Int64" || type == "Float64" || type == "Float32"));
+  const std::size_t size = type == "Float32" ? 4 : 8;
+  const std::string& raw = file.child("AppendedData").text;
+  const std::size_t at = appended_start(file) + std::stoull(array.attributes.at("offset"));
+  REQUIRE(at + 8 <= raw.size());
+  std::uint64_t bytes = 0;
+  std::memcpy(&bytes, raw.data() + at, 8);
+  REQUIRE(bytes == static_cast<std::uint64_t>(tuples) * components * size);
+  REQUIRE(at + 8 + bytes <= raw.size());
+  Eigen::MatrixXd m(tuples, components);
+  const char* p = raw.data() + at + 8;
+  for (Eigen::Index i = 0; i < m.size(); ++i, p += size) {
+    double x = 0.0;
+    if (type == "Int64") {
+      std::int64_t v = 0;
+      std::memcpy(&v, p, 8);
+      x = static_cast<double>(v);
+    } else if (type == "Float64") {
+      std::memcpy(&x, p, 8);
+    } else {
+      float v = 0.0f;
+      std::memcpy(&v, p, 4);
+      x = v;
+    }
+    m(i / components, i % components) = x;
+  }
+  end = std::max(end, at + 8 + static_cast<std::size_t>(bytes));
+  return m;
+}
+
+/// A DataArray in either form, checked to hold `tuples` tuples.
+inline Eigen::MatrixXd data_array(const XmlElement& array, const XmlElement& file,
+                                  Eigen::Index tuples, std::size_t& end) {
+  if (array.attributes.at("format") == "ascii") {
+    Eigen::MatrixXd m = ascii_array(array);
+    CHECK(m.rows() == tuples);
+    return m;
+  }
+  return appended_array(array, file, tuples, end);
 }
 
 struct VtpFile {
@@ -114,38 +179,52 @@ struct VtpFile {
   std::map<std::string, Eigen::MatrixXd> point_data, cell_data;
 };
 
-/// Reads a .vtp written with ASCII arrays, checking that every array has as many tuples as
-/// its location declares and that the offsets describe triangles.
+/// Reads a .vtp with ASCII or raw appended arrays, checking that every array has as many
+/// tuples as its location declares, that the offsets describe triangles and that the
+/// appended blocks end where the data ends.
 inline VtpFile parse_vtp(const std::string& text) {
   const XmlElement file = parse_xml(text);
   CHECK(file.name == "VTKFile");
   CHECK(file.attributes.at("type") == "PolyData");
+  CHECK(file.attributes.at("byte_order") == "LittleEndian");
+  CHECK(file.attributes.at("header_type") == "UInt64");
   const XmlElement& piece = file.child("PolyData").child("Piece");
   VtpFile vtp;
   vtp.points = std::stol(piece.attributes.at("NumberOfPoints"));
   vtp.polys = std::stol(piece.attributes.at("NumberOfPolys"));
-  vtp.coordinates = ascii_array(piece.child("Points").child("DataArray"));
-  CHECK(vtp.coordinates.rows() == vtp.points);
-  CHECK(vtp.coordinates.cols() == 3);
+  std::size_t end = 0;
+  const XmlElement& points = piece.child("Points").child("DataArray");
+  CHECK(points.attributes.at("type") == "Float64");
+  CHECK(points.attributes.at("NumberOfComponents") == "3");
+  vtp.coordinates = data_array(points, file, vtp.points, end);
   for (const XmlElement& a : piece.child("Polys").children) {
+    CHECK(a.attributes.at("type") == "Int64");
+    CHECK(a.attributes.at("NumberOfComponents") == "1");  // VTK refuses tuples here
     if (a.attributes.at("Name") == "connectivity")
-      vtp.connectivity = ascii_array(a);
+      vtp.connectivity = data_array(a, file, 3 * vtp.polys, end);
     if (a.attributes.at("Name") == "offsets")
-      vtp.offsets = ascii_array(a);
+      vtp.offsets = data_array(a, file, vtp.polys, end);
   }
-  CHECK(vtp.connectivity.size() == 3 * vtp.polys);
+  REQUIRE(vtp.connectivity.size() == 3 * vtp.polys);
   REQUIRE(vtp.offsets.size() == vtp.polys);
+  const Eigen::MatrixXd corners = vtp.connectivity;  // #polys×3: the corners of a face together
+  vtp.connectivity = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>(
+      corners.data(), vtp.polys, 3);
   for (Eigen::Index f = 0; f < vtp.polys; ++f)
     CHECK(vtp.offsets(f) == 3.0 * double(f + 1));
   CHECK((vtp.connectivity.array() >= 0).all());
   CHECK((vtp.connectivity.array() < double(vtp.points)).all());
   for (const XmlElement& a : piece.child("PointData").children) {
-    vtp.point_data[a.attributes.at("Name")] = ascii_array(a);
-    CHECK(vtp.point_data[a.attributes.at("Name")].rows() == vtp.points);
+    CHECK(a.attributes.at("type") == "Float64");
+    vtp.point_data[a.attributes.at("Name")] = data_array(a, file, vtp.points, end);
   }
   for (const XmlElement& a : piece.child("CellData").children) {
-    vtp.cell_data[a.attributes.at("Name")] = ascii_array(a);
-    CHECK(vtp.cell_data[a.attributes.at("Name")].rows() == vtp.polys);
+    CHECK(a.attributes.at("type") == "Float64");
+    vtp.cell_data[a.attributes.at("Name")] = data_array(a, file, vtp.polys, end);
+  }
+  if (end > 0) {  // only the closing newline and indentation may follow the last block
+    const std::string& raw = file.child("AppendedData").text;
+    CHECK(raw.substr(end).find_first_not_of(" \n") == std::string::npos);
   }
   return vtp;
 }
@@ -177,35 +256,21 @@ inline VtiFile parse_vti(const std::string& bytes) {
     points *= n + 1;
     cells *= std::max(n, 1LL);
   }
-  const std::string& raw = file.child("AppendedData").text;
-  const std::size_t underscore = raw.find('_');
-  REQUIRE(underscore != std::string::npos);
-  const std::size_t data_start = underscore + 1;
-  std::size_t data_end = data_start;
+  std::size_t end = 0;
   const XmlElement& piece = image.child("Piece");
   for (const char* location : {"PointData", "CellData"}) {
     const long long tuples = std::string(location) == "PointData" ? points : cells;
     for (const XmlElement& a : piece.child(location).children) {
       CHECK(a.attributes.at("type") == "Float32");
-      const int components = std::stoi(a.attributes.at("NumberOfComponents"));
-      const std::size_t at = data_start + std::stoull(a.attributes.at("offset"));
-      REQUIRE(at + 8 <= raw.size());
-      std::uint64_t count = 0;
-      std::memcpy(&count, raw.data() + at, 8);
-      REQUIRE(count == static_cast<std::uint64_t>(tuples * components) * sizeof(float));
-      REQUIRE(at + 8 + count <= raw.size());
-      Eigen::MatrixXf values(tuples, components);
-      std::vector<float> buffer(static_cast<std::size_t>(tuples * components));
-      std::memcpy(buffer.data(), raw.data() + at + 8, count);
-      for (long long i = 0; i < tuples * components; ++i)
-        values(i / components, i % components) = buffer[static_cast<std::size_t>(i)];
       (std::string(location) == "PointData" ? vti.point_data
-                                            : vti.cell_data)[a.attributes.at("Name")] = values;
-      data_end = std::max(data_end, at + 8 + count);
+                                            : vti.cell_data)[a.attributes.at("Name")] =
+          appended_array(a, file, tuples, end).cast<float>();
     }
   }
   // Only the closing newline and indentation may follow the last block.
-  CHECK(raw.substr(data_end).find_first_not_of(" \n") == std::string::npos);
+  const std::string& raw = file.child("AppendedData").text;
+  CHECK(raw.substr(std::max(end, appended_start(file))).find_first_not_of(" \n") ==
+        std::string::npos);
   return vti;
 }
 
@@ -218,7 +283,7 @@ struct PlyFile {
 };
 
 /// Reads the binary PLY layout of apps/output/ply_writer.hpp, checking the header's element
-/// and property lines and that the payload is exactly #V·19 + #F·13 bytes.
+/// and property lines and that the payload is exactly #V·23 + #F·13 bytes.
 inline PlyFile parse_ply(const std::string& bytes, const std::string& field_name) {
   const std::size_t end = bytes.find("end_header\n");
   REQUIRE(end != std::string::npos);
@@ -241,6 +306,7 @@ inline PlyFile parse_ply(const std::string& bytes, const std::string& field_name
                                           "property float y",
                                           "property float z",
                                           "property float " + field_name,
+                                          "property float quality",
                                           "property uchar red",
                                           "property uchar green",
                                           "property uchar blue",
@@ -248,19 +314,20 @@ inline PlyFile parse_ply(const std::string& bytes, const std::string& field_name
                                           "property list uchar int vertex_indices"};
   CHECK(ply.header == expected);
   const std::size_t start = end + 11;
-  REQUIRE(bytes.size() - start == static_cast<std::size_t>(nv * 19 + nf * 13));
+  REQUIRE(bytes.size() - start == static_cast<std::size_t>(nv * 23 + nf * 13));
   ply.vertices.resize(nv, 3);
   ply.field.resize(nv);
   ply.colours.resize(nv, 3);
   ply.faces.resize(nf, 3);
   const char* p = bytes.data() + start;
-  for (long long v = 0; v < nv; ++v, p += 19) {
-    float values[4];
-    std::memcpy(values, p, 16);
+  for (long long v = 0; v < nv; ++v, p += 23) {
+    float values[5];
+    std::memcpy(values, p, 20);
     ply.vertices.row(v) << values[0], values[1], values[2];
     ply.field(v) = values[3];
+    CHECK(values[4] == values[3]);  // quality: the field again
     for (int c = 0; c < 3; ++c)
-      ply.colours(v, c) = static_cast<std::uint8_t>(p[16 + c]);
+      ply.colours(v, c) = static_cast<std::uint8_t>(p[20 + c]);
   }
   for (long long f = 0; f < nf; ++f, p += 13) {
     CHECK(static_cast<unsigned char>(p[0]) == 3);

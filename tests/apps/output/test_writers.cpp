@@ -1,7 +1,8 @@
 // The result writers of apps/output (CSV, VTP, PLY, STL, and the VTI writer as the features
 // command uses it): every file is parsed back by the independent readers of
 // file_readers.hpp, which check that it is well-formed, and the numbers read back must equal
-// the numbers written (exactly for the text formats, to float32 rounding for the binary ones).
+// the numbers written (exactly for the text formats and Float64 arrays, to float32 rounding
+// for the float32 ones). test_vtk_readers.py reads the same writers' files with VTK.
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstring>
@@ -49,32 +50,62 @@ TEST_CASE("CSV: exact header, one row per item, numbers read back bit-identical"
   CHECK_THROWS_AS(output::format_csv({"x"}, rows), InternalError);
 }
 
-TEST_CASE("VTP: balanced XML, array lengths match the mesh, values read back exactly") {
+TEST_CASE("VTP binary and ASCII: balanced XML, array lengths match the mesh, values exact") {
   const geometry::SurfaceMesh mesh =
       geometry::make_box(Eigen::Vector3d(-1, -2, -0.5), Eigen::Vector3d(1.5, 2, 0.25), 0.7);
   const Eigen::MatrixXd point_scalar = awkward_values(mesh.num_vertices(), 1);
   const Eigen::MatrixXd point_vector = awkward_values(mesh.num_vertices(), 3);
   const Eigen::MatrixXd cell_scalar = awkward_values(mesh.num_faces(), 1);
-  const std::string path = scratch("writers.vtp");
-  output::write_vtp(path, mesh.vertices(), mesh.faces(),
-                    {{"thickness", &point_scalar}, {"n_f", &point_vector}},
-                    {{"thickness", &cell_scalar}});
-  const VtpFile vtp = parse_vtp(slurp(path));
-  CHECK(vtp.points == mesh.num_vertices());
-  CHECK(vtp.polys == mesh.num_faces());
-  CHECK(vtp.coordinates == mesh.vertices());
-  for (Eigen::Index f = 0; f < mesh.num_faces(); ++f)
-    for (int k = 0; k < 3; ++k)
-      CHECK(vtp.connectivity(f, k) == double(mesh.faces()(f, k)));
-  CHECK(vtp.point_data.at("thickness") == point_scalar);
-  CHECK(vtp.point_data.at("n_f") == point_vector);
-  CHECK(vtp.cell_data.at("thickness") == cell_scalar);
+  for (const auto encoding : {output::VtkEncoding::binary, output::VtkEncoding::ascii}) {
+    const bool binary = encoding == output::VtkEncoding::binary;
+    CAPTURE(binary);
+    const std::string path = scratch(binary ? "writers.vtp" : "writers_ascii.vtp");
+    output::write_vtp(path, mesh.vertices(), mesh.faces(),
+                      {{"thickness", &point_scalar}, {"n_f", &point_vector}},
+                      {{"thickness", &cell_scalar}}, encoding);
+    const std::string text = slurp(path);
+    CHECK((text.find("<AppendedData encoding=\"raw\">") != std::string::npos) == binary);
+    const VtpFile vtp = parse_vtp(text);
+    CHECK(vtp.points == mesh.num_vertices());
+    CHECK(vtp.polys == mesh.num_faces());
+    CHECK(vtp.coordinates == mesh.vertices());
+    CHECK(vtp.connectivity == mesh.faces().cast<double>());
+    CHECK(vtp.point_data.at("thickness") == point_scalar);
+    CHECK(vtp.point_data.at("n_f") == point_vector);
+    CHECK(vtp.cell_data.at("thickness") == cell_scalar);
+    if (binary) {  // 8 bytes a value, 8 for each array's byte count, and under 2 kB of XML
+      const auto nv = static_cast<std::size_t>(mesh.num_vertices()),
+                 nf = static_cast<std::size_t>(mesh.num_faces());
+      const std::size_t payload = 8 * (3 * nv + 4 * nf + (1 + 3) * nv + nf) + 8 * 6;
+      CHECK(text.size() > payload);
+      CHECK(text.size() < payload + 2000);
+    }
+  }
 
   const Eigen::MatrixXd wrong = Eigen::MatrixXd::Zero(3, 1);
   CHECK_THROWS_AS(
       output::write_vtp(scratch("bad.vtp"), mesh.vertices(), mesh.faces(), {{"w", &wrong}}, {}),
       InternalError);
   CHECK_FALSE(fs::exists(scratch("bad.vtp")));  // nothing half-written
+}
+
+TEST_CASE("VTP ASCII: indices and offsets above 10⁵ are written as integers") {
+  // The shortest double form of 100000 is "1e+05", which VTK reads as 1: every index and
+  // offset from 10⁵ on must come out in integer digits.
+  const Eigen::Index nf = 40000;  // vertex indices up to 119999, offsets up to 120000
+  Eigen::MatrixX3d vertices = Eigen::MatrixX3d::Zero(3 * nf, 3);
+  vertices.col(0).setLinSpaced(0.0, 1.0);
+  Eigen::MatrixX3i faces(nf, 3);
+  for (Eigen::Index f = 0; f < nf; ++f)
+    faces.row(f) << int(3 * f), int(3 * f + 1), int(3 * f + 2);
+  const std::string path = scratch("writers_integers.vtp");
+  output::write_vtp(path, vertices, faces, {}, {}, output::VtkEncoding::ascii);
+  const std::string text = slurp(path);
+  CHECK(text.find("e+") == std::string::npos);
+  CHECK(text.find(" 119999\n") != std::string::npos);
+  CHECK(text.find(" 120000\n") != std::string::npos);
+  const VtpFile vtp = parse_vtp(text);  // REQUIREs integer tokens in the Int64 arrays
+  CHECK(vtp.connectivity == faces.cast<double>());
 }
 
 TEST_CASE("PLY: header and payload size by the format, floats, colours and faces read back") {
@@ -86,7 +117,7 @@ TEST_CASE("PLY: header and payload size by the format, floats, colours and faces
   colouring.colour_maximum = 1.0;
   colouring.comment = "test";
   output::write_ply(path, mesh.vertices(), mesh.faces(), field, colouring);
-  const PlyFile ply = parse_ply(slurp(path), "thickness");
+  const PlyFile ply = parse_ply(slurp(path), "thickness");  // with "quality" equal to it
   REQUIRE(ply.vertices.rows() == mesh.num_vertices());
   CHECK(ply.vertices == mesh.vertices().cast<float>());
   CHECK(ply.field == field.cast<float>());
@@ -103,6 +134,11 @@ TEST_CASE("PLY: header and payload size by the format, floats, colours and faces
   field.maxCoeff(&highest);
   CHECK(ply.colours(lowest, 0) == output::viridis(0.0).r);
   CHECK(ply.colours(highest, 1) == output::viridis(1.0).g);
+
+  colouring.field_name = "quality";  // the name of the copy for MeshLab
+  CHECK_THROWS_AS(
+      output::write_ply(scratch("bad.ply"), mesh.vertices(), mesh.faces(), field, colouring),
+      InternalError);
 }
 
 TEST_CASE("STL: 84 + 50·F bytes, corners and right-hand normals as float32") {
