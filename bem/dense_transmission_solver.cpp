@@ -6,7 +6,7 @@
 #include <numeric>
 #include <sstream>
 
-#include "bem/blocked_lu.hpp"
+#include "linalg/blocked_lu.hpp"
 #include "bem/galerkin_operators.hpp"
 #include "bem/laplace_kernel.hpp"
 #include "bem/panel.hpp"
@@ -106,8 +106,8 @@ BoundarySolution solve_transmission_dense(const geometry::SurfaceMesh& mesh,
 
   const auto solve_start = Clock::now();
   // Factorised as a copy: `a` is kept for the residual check.
-  const LuFactors lu = lu_factorise(a, progress);
-  const Eigen::MatrixXd z = lu_solve(lu, b);
+  const linalg::LuFactors lu = linalg::lu_factorise(a, progress);
+  const Eigen::MatrixXd z = linalg::lu_solve(lu, b);
   if (!z.allFinite())
     throw NumericalError("dense BEM solve: the solution contains NaN or Inf (singular system; "
                          "check the mesh for duplicate or degenerate faces)");

@@ -10,7 +10,7 @@
 #include <type_traits>
 
 #include "bem/hierarchical/galerkin_block_generator.hpp"
-#include "bem/hierarchical/gmres.hpp"
+#include "linalg/gmres.hpp"
 #include "bem/hierarchical/hierarchical_matrix.hpp"
 #include "bem/hierarchical/nested_far_field.hpp"
 #include "bem/hierarchical/yukawa_near_field.hpp"
@@ -355,7 +355,7 @@ BoundarySolution solve_transmission_hmatrix(const geometry::SurfaceMesh& mesh,
   };
 
   const auto solve_start = Clock::now();
-  GmresOptions gmres_options;
+  linalg::GmresOptions gmres_options;
   gmres_options.tolerance = options.tolerance;
   gmres_options.restart = fitted.restart;
   gmres_options.max_iterations = options.max_iterations;
@@ -368,7 +368,7 @@ BoundarySolution solve_transmission_hmatrix(const geometry::SurfaceMesh& mesh,
   b.bottomRows(n) = with_exterior([&](const auto& yukawa) { return sparse_rows_product(yukawa, g); });
   Eigen::MatrixXd x = Eigen::MatrixXd::Zero(2 * n, 3);
   std::array<int, 3> reached{0, 0, 0};
-  const std::vector<GmresResult> results = gmres_columns(
+  const std::vector<linalg::GmresResult> results = linalg::gmres_columns(
       system, precondition, b, x, gmres_options, [&](int direction, int iteration, double) {
         throw_if_cancelled();  // called between GMRES steps, outside parallel regions
         reached[size_t(direction)] = iteration;
@@ -379,7 +379,7 @@ BoundarySolution solve_transmission_hmatrix(const geometry::SurfaceMesh& mesh,
   solution.phi.resize(n, 3);
   solution.q.resize(n, 3);
   for (int i = 0; i < 3; ++i) {
-    const GmresResult& result = results[size_t(i)];
+    const linalg::GmresResult& result = results[size_t(i)];
     solution.report.iterations = std::max(solution.report.iterations, result.iterations);
     solution.report.residual = std::max(solution.report.residual, result.residual);
     solution.report.preconditioned_residual =
@@ -387,7 +387,7 @@ BoundarySolution solve_transmission_hmatrix(const geometry::SurfaceMesh& mesh,
     if (!result.converged || !x.col(i).allFinite()) {
       std::ostringstream msg;
       msg << "hierarchical-matrix BEM solve (direction " << i + 1 << "): GMRES reached relative "
-          << (options.preconditioner_side == PreconditionerSide::left ? "preconditioned " : "")
+          << (options.preconditioner_side == linalg::PreconditionerSide::left ? "preconditioned " : "")
           << "residual " << result.preconditioned_residual << " after " << result.iterations
           << " iterations, tolerance " << options.tolerance;
       if (fitted.restart < options.restart)

@@ -11,7 +11,7 @@
 // HMatrixSolverOptions::far_field), the Yukawa block row as a
 // sparse near-field matrix (bem/hierarchical/yukawa_near_field.hpp; the exponential decay
 // makes it exactly as sparse as the dense path's own dropping rule), and restarted GMRES
-// (bem/hierarchical/gmres.hpp) with a two-level preconditioner: a coarse space of
+// (linalg/gmres.hpp) with a two-level preconditioner: a coarse space of
 // cluster-wise constant densities (bem/hierarchical/cluster_coarse_space.hpp), then LU of
 // the system restricted to clusters (bem/hierarchical/cluster_block_preconditioner.hpp).
 // Storage and work are O(N log N). docs/benchmarks.md holds the measured times, memory and
@@ -24,7 +24,7 @@
 #include "bem/hierarchical/cluster_block_preconditioner.hpp"
 #include "bem/hierarchical/cluster_coarse_space.hpp"
 #include "bem/hierarchical/cluster_tree.hpp"
-#include "bem/hierarchical/gmres.hpp"
+#include "linalg/gmres.hpp"
 #include "core/progress.hpp"
 #include "geometry/surface_mesh.hpp"
 
@@ -61,14 +61,14 @@ struct HMatrixSolverOptions {
   /// (SolveReport::restart).
   int restart = 60;
   int max_iterations = 600;
-  /// The preconditioner's side in GMRES (bem/hierarchical/gmres.hpp), which sets what
+  /// The preconditioner's side in GMRES (linalg/gmres.hpp), which sets what
   /// `tolerance` bounds. Left: the preconditioned residual, an estimate of the densities'
   /// relative error because the two-level preconditioner is close to A⁻¹. Right: the
   /// residual of the equations, which lets q's error grow with the condition number of the
   /// first-kind single layer (about 30 × the residual on a 5120-face ball, 1.2e−5 against the
   /// dense path at 1e−6 on 2000 faces, against 1.0e−6 preconditioned on the left; the
   /// left side takes 14 iterations there instead of 11; docs/benchmarks.md).
-  PreconditionerSide preconditioner_side = PreconditionerSide::left;
+  linalg::PreconditionerSide preconditioner_side = linalg::PreconditionerSide::left;
   /// How the Laplace row's far field is kept. `hmatrix`: every admissible block as its own
   /// factors. `nested`: the blocks between clusters of at least `nested_min_cluster` panels
   /// in the H² form (bem/hierarchical/nested_far_field.hpp: bases shared by a cluster's

@@ -27,7 +27,7 @@
 #include "bem/polar_quadrature.hpp"
 #include "bem/radial_values.hpp"
 #include "bem/triangle_quadrature.hpp"
-#include "bem/vector_exponential.hpp"
+#include "linalg/vector_exponential.hpp"
 
 namespace bemshape::bem {
 
@@ -113,7 +113,7 @@ template <class Kernel, class Array>
     const double kappa = kernel.kappa();
     const Array r = r2.sqrt();
     const Array inv_r = r.inverse();
-    const Array e = vector_exp<Array>(-kappa * r);
+    const Array e = linalg::vector_exp<Array>(-kappa * r);
     single = e * inv_r;
     double_layer = e * (1.0 + kappa * r) * inv_r.cube();
   } else {
@@ -128,7 +128,7 @@ template <class Kernel, class Array>
 /// points at a time in fixed-size arrays (one AVX2 register of doubles), each group's
 /// distance, kernel terms and weighted sums in registers; a last partial group repeats the
 /// rule's last point with weight 0. Against whole-rule arrays (every operation a pass over
-/// the rule's values in memory) and Eigen's exponential, this and bem/vector_exponential.hpp
+/// the rule's values in memory) and Eigen's exponential, this and linalg/vector_exponential.hpp
 /// take the 64-point rule from 2.8 to 1.7 ns per point for Laplace and from 6.2 to 4.6 for
 /// Yukawa (2-core Zen 3, `bench_panel_integrals`; docs/benchmarks.md,
 /// eleventh session).

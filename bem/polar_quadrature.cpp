@@ -8,7 +8,7 @@
 
 #include "bem/gauss_legendre.hpp"
 #include "bem/laplace_kernel.hpp"
-#include "bem/vector_exponential.hpp"
+#include "linalg/vector_exponential.hpp"
 #include "bem/yukawa_kernel.hpp"
 
 namespace bemshape::bem {
@@ -263,7 +263,7 @@ PanelIntegrals polar_panel_integrals(const Kernel& kernel, const Panel& panel,
       const Eigen::Index m = std::min(chunk, count - begin);
       const Eigen::Map<const Eigen::ArrayXd> v(graded.nodes.data() + begin, m);
       const Eigen::Map<const Eigen::ArrayXd> w(graded.weights.data() + begin, m);
-      const Chunk ev = vector_exp<Chunk>(v);
+      const Chunk ev = linalg::vector_exp<Chunk>(v);
       const Chunk ch = 0.5 * (ev + ev.inverse());  // cosh v
       const Chunk R = p * ch;
       const Chunk rho = (R.square() + d * d).sqrt();
@@ -274,7 +274,7 @@ PanelIntegrals polar_panel_integrals(const Kernel& kernel, const Panel& panel,
         sl += (dtheta * delta).sum();
         dl += d_over_c * (dtheta * delta / rho).sum();
       } else if (split) {
-        const Chunk e = exp_c * vector_exp<Chunk>(-kappa * delta);
+        const Chunk e = exp_c * linalg::vector_exp<Chunk>(-kappa * delta);
         sl -= (dtheta * e).sum() / kappa;
         dl -= d * (dtheta * e / rho).sum();
       } else {

@@ -19,7 +19,7 @@
 
 #include <array>
 
-#include "bem/vector_exponential.hpp"
+#include "linalg/vector_exponential.hpp"
 
 namespace bemshape::bem {
 
@@ -47,7 +47,7 @@ inline constexpr double kRadialSeriesBelow = 1.0;
 /// M_V(c) and M_K(c) (dimensionless) for every entry of the Eigen array c = κρ > 0.
 template <class Array>
 void yukawa_radial_moments(const Array& c, Array& single, Array& double_layer) {
-  const Array e = vector_exp<Array>(-c);
+  const Array e = linalg::vector_exp<Array>(-c);
   const Array c2 = c.square();
   single = (2.0 - e * (c2 + 2.0 * c + 2.0)) / (c2 * c);
   double_layer = (3.0 - e * (c2 + 3.0 * c + 3.0)) / c2;

@@ -672,7 +672,7 @@ int benchmark(int argc, char** argv) {
     else if (a == "--aca" && i + 1 < argc) options.aca_tolerance = std::atof(argv[++i]);
     else if (a == "--leaf" && i + 1 < argc) options.leaf_size = std::atol(argv[++i]);
     else if (a == "--eta" && i + 1 < argc) options.eta = std::atof(argv[++i]);
-    else if (a == "--right") options.preconditioner_side = bem::PreconditionerSide::right;
+    else if (a == "--right") options.preconditioner_side = linalg::PreconditionerSide::right;
     else if (a == "--single") options.single_precision = true;
     else if (a == "--double") options.single_precision = false;
     else if (a == "--block" && i + 1 < argc) options.preconditioner_block = std::atol(argv[++i]);

@@ -3,7 +3,7 @@
 // the ACA row/column generators will call them, and the far-field lanes those generators use
 // (V and K of 8 pairs at once, bem/far_field_lanes.hpp); then the cost per point of the larger
 // Gauss rules (gauss_panel_integrals) on one panel and of the exponential per SIMD lane
-// (bem/vector_exponential.hpp against Eigen's). Not a test: prints entries per second and
+// (linalg/vector_exponential.hpp against Eigen's). Not a test: prints entries per second and
 // nanoseconds.
 //
 //   build/bench/bench_panel_integrals [frequency=24]
@@ -19,7 +19,7 @@
 #include "bem/panel.hpp"
 #include "bem/panel_arrays.hpp"
 #include "bem/panel_integrals.hpp"
-#include "bem/vector_exponential.hpp"
+#include "linalg/vector_exponential.hpp"
 #include "bem/yukawa_kernel.hpp"
 #include "geometry/primitive_meshes.hpp"
 
@@ -155,8 +155,8 @@ int main(int argc, char** argv) {
     measure_rule("Laplace Gauss rule, one panel", laplace, bem::collapsed_gauss_rule(n));
     measure_rule("Yukawa Gauss rule, one panel", yukawa_unit, bem::collapsed_gauss_rule(n));
   }
-  measure_exponential("e^x, bem::vector_exp", [](const auto& x) {
-    return bem::vector_exp<Eigen::Array<double, 64, 1>>(x);
+  measure_exponential("e^x, linalg::vector_exp", [](const auto& x) {
+    return linalg::vector_exp<Eigen::Array<double, 64, 1>>(x);
   });
   measure_exponential("e^x, Eigen exp",
                       [](const auto& x) { return Eigen::Array<double, 64, 1>(x.exp()); });

@@ -4,7 +4,7 @@
 #include <string>
 
 #include "core/errors.hpp"
-#include "fem/conjugate_gradient.hpp"
+#include "linalg/conjugate_gradient.hpp"
 #include "fem/shape_feature_operator.hpp"
 
 namespace bemshape::fem {
@@ -34,7 +34,7 @@ FemSolution<D> solve_shape_feature_pde(const VoxelGrid<D>& grid,
 
   FemSolution<D> solution;
   solution.s.setZero(grid.num_nodes(), D);
-  const auto cg = conjugate_gradient(multigrid.fine_operator(), multigrid, load, solution.s,
+  const auto cg = linalg::conjugate_gradient(multigrid.fine_operator(), multigrid, load, solution.s,
                                      options.relative_tolerance, options.max_iterations, progress);
   const auto end = Clock::now();
   solution.report.iterations = cg.iterations;

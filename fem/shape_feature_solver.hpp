@@ -5,7 +5,7 @@
 //   ã = a·h0², α = 4/a,
 //
 // with Q1 elements (shape_feature_operator.hpp), all D components at once by conjugate
-// gradients (conjugate_gradient.hpp) preconditioned with one geometric multigrid V-cycle
+// gradients (linalg/conjugate_gradient.hpp) preconditioned with one geometric multigrid V-cycle
 // (multigrid.hpp). Iteration counts do not grow with the grid.
 
 #include <vector>

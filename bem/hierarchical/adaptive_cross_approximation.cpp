@@ -11,7 +11,7 @@
 #include <Eigen/QR>
 #include <Eigen/Eigenvalues>
 
-#include "bem/hierarchical/gram_orthogonalisation.hpp"
+#include "linalg/gram_orthogonalisation.hpp"
 
 namespace bemshape::bem {
 namespace {
@@ -258,8 +258,8 @@ LowRankBlock recompress_with_grams(const LowRankBlock& block, double epsilon, Fa
   Eigen::MatrixXd w = Eigen::MatrixXd::Identity(kv, kv);
   const Eigen::VectorXd all2 = c.colwise().squaredNorm().transpose();
   const double allowed2 = epsilon * epsilon * all2.sum();
-  orthogonalise_columns(c, w, std::max(allowed2, kRoundingLevel * kRoundingLevel * all2.sum()),
-                        resolved_eigenvalues(epsilon));
+  linalg::orthogonalise_columns(c, w, std::max(allowed2, kRoundingLevel * kRoundingLevel * all2.sum()),
+                        linalg::resolved_eigenvalues(epsilon));
   const Eigen::VectorXd norms2 = c.colwise().squaredNorm().transpose();
   std::vector<Eigen::Index> order(static_cast<std::size_t>(c.cols()));
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = Eigen::Index(i);

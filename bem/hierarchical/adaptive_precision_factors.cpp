@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-#include "bem/hierarchical/mixed_precision_products.hpp"
+#include "linalg/mixed_precision_products.hpp"
 #include "core/assert.hpp"
 
 namespace bemshape::bem {
@@ -17,7 +17,7 @@ template <class Int>
 void store_fixed_point(const Eigen::MatrixXd& x, Eigen::Index first, Eigen::Index count, Int* q,
                        double* scale) {
   for (Eigen::Index c = 0; c < count; ++c)
-    to_fixed_point<Int>(x.col(first + c), q + c * x.rows(), scale[c]);
+    linalg::to_fixed_point<Int>(x.col(first + c), q + c * x.rows(), scale[c]);
 }
 
 /// out.col(first + c) = scale[c]·stored(:, c) over rows [begin, begin + count) for the
@@ -56,10 +56,10 @@ AdaptivePrecisionFactors::AdaptivePrecisionFactors(const Eigen::MatrixXd& u, con
     for (Eigen::Index i = r - 1; i >= 0; --i) {
       const double un = u.col(i).norm(), vn = v.col(i).norm();
       double scale = 0.0;
-      const double e16 = column_error(un, to_fixed_point<std::int16_t>(u.col(i), nullptr, scale), vn,
-                                      to_fixed_point<std::int16_t>(v.col(i), nullptr, scale));
-      const double e8 = column_error(un, to_fixed_point<std::int8_t>(u.col(i), nullptr, scale), vn,
-                                     to_fixed_point<std::int8_t>(v.col(i), nullptr, scale));
+      const double e16 = column_error(un, linalg::to_fixed_point<std::int16_t>(u.col(i), nullptr, scale), vn,
+                                      linalg::to_fixed_point<std::int16_t>(v.col(i), nullptr, scale));
+      const double e8 = column_error(un, linalg::to_fixed_point<std::int8_t>(u.col(i), nullptr, scale), vn,
+                                     linalg::to_fixed_point<std::int8_t>(v.col(i), nullptr, scale));
       e16_tail(i) = e16_tail(i + 1) + e16;
       e8_tail(i) = e8_tail(i + 1) + e8;
     }
@@ -124,17 +124,17 @@ void AdaptivePrecisionFactors::Factor::decode(Eigen::Index begin, Eigen::Index c
 void AdaptivePrecisionFactors::Factor::add_product(const Eigen::Ref<const Eigen::MatrixXd>& t,
                                                    Eigen::Ref<Eigen::MatrixXd> out) const {
   const Eigen::Index a = columns.single, b = a + columns.fixed16;
-  add_scaled_columns(single, rows, rows, a, nullptr, t.topRows(a), out);
-  add_scaled_columns(fixed16, rows, rows, columns.fixed16, scale16, t.middleRows(a, columns.fixed16), out);
-  add_scaled_columns(fixed8, rows, rows, columns.fixed8, scale8, t.middleRows(b, columns.fixed8), out);
+  linalg::add_scaled_columns(single, rows, rows, a, nullptr, t.topRows(a), out);
+  linalg::add_scaled_columns(fixed16, rows, rows, columns.fixed16, scale16, t.middleRows(a, columns.fixed16), out);
+  linalg::add_scaled_columns(fixed8, rows, rows, columns.fixed8, scale8, t.middleRows(b, columns.fixed8), out);
 }
 
 void AdaptivePrecisionFactors::Factor::add_transpose_product(const Eigen::Ref<const Eigen::MatrixXd>& x,
                                                              Eigen::Ref<Eigen::MatrixXd> t) const {
   const Eigen::Index a = columns.single, b = a + columns.fixed16;
-  add_scaled_column_dots(single, rows, rows, a, nullptr, x, t.topRows(a));
-  add_scaled_column_dots(fixed16, rows, rows, columns.fixed16, scale16, x, t.middleRows(a, columns.fixed16));
-  add_scaled_column_dots(fixed8, rows, rows, columns.fixed8, scale8, x, t.middleRows(b, columns.fixed8));
+  linalg::add_scaled_column_dots(single, rows, rows, a, nullptr, x, t.topRows(a));
+  linalg::add_scaled_column_dots(fixed16, rows, rows, columns.fixed16, scale16, x, t.middleRows(a, columns.fixed16));
+  linalg::add_scaled_column_dots(fixed8, rows, rows, columns.fixed8, scale8, x, t.middleRows(b, columns.fixed8));
 }
 
 void AdaptivePrecisionFactors::multiply_v_transpose(const Eigen::Ref<const Eigen::MatrixXd>& x,

@@ -23,7 +23,7 @@
 // goes to 8 bits and the middle to 16. On Laplace blocks at ε = 1e−8 that is about half
 // the columns (docs/benchmarks.md has the measured memory). Products are computed in
 // double precision; each stored column is widened in registers as the product reads it
-// (bem/hierarchical/mixed_precision_products.hpp), and no double copy is held.
+// (linalg/mixed_precision_products.hpp), and no double copy is held.
 
 #include <cstddef>
 #include <cstdint>
@@ -79,7 +79,7 @@ class AdaptivePrecisionFactors {
     /// Rows [begin, begin + count) in double precision (count × rank).
     void decode(Eigen::Index begin, Eigen::Index count, Eigen::Ref<Eigen::MatrixXd> out) const;
     /// out += F t (t: rank × k) and t += Fᵀ x (x: rows × k), in double arithmetic
-    /// (bem/hierarchical/mixed_precision_products.hpp).
+    /// (linalg/mixed_precision_products.hpp).
     void add_product(const Eigen::Ref<const Eigen::MatrixXd>& t, Eigen::Ref<Eigen::MatrixXd> out) const;
     void add_transpose_product(const Eigen::Ref<const Eigen::MatrixXd>& x, Eigen::Ref<Eigen::MatrixXd> t) const;
   };

@@ -41,7 +41,7 @@ ClusterBlockPreconditioner::ClusterBlockPreconditioner(const ClusterTree& tree,
         });
       }
       interior[t - first].resize(0, 0);
-      factors_[t] = FixedPointLu(local.cast<float>());
+      factors_[t] = linalg::FixedPointLu(local.cast<float>());
     }
   }
 }

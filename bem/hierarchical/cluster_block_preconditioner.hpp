@@ -12,7 +12,7 @@
 // solver is left with the smooth far interactions.
 //
 // The factors are computed in single precision and stored in 16-bit fixed point
-// (fixed_point_lu.hpp): memory at most 8·N·block_size bytes. A preconditioner only has to be
+// (linalg/fixed_point_lu.hpp): memory at most 8·N·block_size bytes. A preconditioner only has to be
 // close to the inverse: the stored factors are the exact factors of blocks perturbed by
 // about 1e−5 relative, far less than the block Jacobi approximation leaves out, and GMRES
 // measures the residual of the double-precision system, so the solution's accuracy does not
@@ -25,7 +25,7 @@
 #include <Eigen/Core>
 
 #include "bem/hierarchical/cluster_tree.hpp"
-#include "bem/hierarchical/fixed_point_lu.hpp"
+#include "linalg/fixed_point_lu.hpp"
 #include "bem/hierarchical/hierarchical_matrix.hpp"
 #include "bem/hierarchical/yukawa_near_field.hpp"
 
@@ -59,7 +59,7 @@ class ClusterBlockPreconditioner {
  private:
   Eigen::Index n_ = 0;
   std::vector<std::pair<Eigen::Index, Eigen::Index>> ranges_;
-  std::vector<FixedPointLu> factors_;
+  std::vector<linalg::FixedPointLu> factors_;
 };
 
 }  // namespace bemshape::bem

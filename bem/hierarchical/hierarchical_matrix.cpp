@@ -8,7 +8,7 @@
 
 #include <omp.h>
 
-#include "bem/hierarchical/mixed_precision_products.hpp"
+#include "linalg/mixed_precision_products.hpp"
 #include "core/cancellation.hpp"
 
 #include "core/assert.hpp"
@@ -219,7 +219,7 @@ namespace {
 /// bytes per entry of A and writes no double copy of it.
 void add_single_precision_product(const Eigen::MatrixXf& a, const Eigen::MatrixXd& x,
                                   Eigen::Ref<Eigen::MatrixXd> out) {
-  add_scaled_columns(a.data(), a.rows(), a.rows(), a.cols(), nullptr, x, out);
+  linalg::add_scaled_columns(a.data(), a.rows(), a.rows(), a.cols(), nullptr, x, out);
 }
 
 /// out += U (Vᵀ x) for factors stored in single precision or narrower.
@@ -410,7 +410,7 @@ HierarchicalMatrix::GroupedColumns HierarchicalMatrix::group_columns(
         part.fixed8.resize(std::size_t(values.size()));
         part.scale.resize(std::size_t(values.cols()));
         for (Eigen::Index c = 0; c < values.cols(); ++c)
-          to_fixed_point(values.col(c), part.fixed8.data() + c * m, part.scale[std::size_t(c)]);
+          linalg::to_fixed_point(values.col(c), part.fixed8.data() + c * m, part.scale[std::size_t(c)]);
         values = Eigen::MatrixXd();
       }
     }
@@ -447,7 +447,7 @@ void HierarchicalMatrix::multiply_add_grouped(const GroupedColumns& grouped,
       const GroupedColumns::Part& part = grouped.parts[k];
       auto rows = mine.middleRows(b.row_begin, m);
       if (part.expanded && !part.fixed8.empty()) {
-        add_scaled_columns(part.fixed8.data(), m, m, densities_ * nc, part.scale.data(), xs, rows);
+        linalg::add_scaled_columns(part.fixed8.data(), m, m, densities_ * nc, part.scale.data(), xs, rows);
       } else if (part.expanded) {
         rows.noalias() += part.values * xs;
       } else {

@@ -14,8 +14,8 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/SVD>
 
-#include "bem/hierarchical/gram_orthogonalisation.hpp"
-#include "bem/hierarchical/mixed_precision_products.hpp"
+#include "linalg/gram_orthogonalisation.hpp"
+#include "linalg/mixed_precision_products.hpp"
 #include "core/assert.hpp"
 #include "core/cancellation.hpp"
 #include "core/errors.hpp"
@@ -37,7 +37,7 @@ constexpr Eigen::Index kTaskClusterSize = 1024;
 /// singular values only to about u·λ_max; those below resolved_eigenvalues' share of the
 /// largest are resolved again as orthogonalise_columns does: the columns mᵀX of the small
 /// ones alone are orthogonalised, their Gram matrix's rounding relative to their own size
-/// (bem/hierarchical/gram_orthogonalisation.hpp), so the singular values near the truncation
+/// (linalg/gram_orthogonalisation.hpp), so the singular values near the truncation
 /// are as accurate as an SVD's.
 Eigen::MatrixXd leading_left_singular_vectors(const Eigen::MatrixXd& m, double tolerance) {
   if (m.rows() == 0 || m.cols() == 0)
@@ -55,7 +55,7 @@ Eigen::MatrixXd leading_left_singular_vectors(const Eigen::MatrixXd& m, double t
     s = lambda.cwiseMax(0.0).cwiseSqrt();
     const double norm = std::sqrt(std::max(lambda(r - 1), 0.0));
     const double resolved =
-        resolved_eigenvalues(norm > 0.0 ? std::min(1.0, tolerance / norm) : 1.0);
+        linalg::resolved_eigenvalues(norm > 0.0 ? std::min(1.0, tolerance / norm) : 1.0);
     Eigen::Index small = 0;
     while (small < r && lambda(small) < resolved * lambda(r - 1))
       ++small;
@@ -65,7 +65,7 @@ Eigen::MatrixXd leading_left_singular_vectors(const Eigen::MatrixXd& m, double t
       Eigen::MatrixXd c = m.transpose() * u.leftCols(small);
       if (small >= 2 && c.squaredNorm() > tolerance2) {
         Eigen::MatrixXd w = u.leftCols(small);
-        orthogonalise_columns(c, w, tolerance2, resolved);
+        linalg::orthogonalise_columns(c, w, tolerance2, resolved);
         u.leftCols(small) = w;
       }
       s.head(small) = c.colwise().norm().transpose();
@@ -415,12 +415,12 @@ void NestedFarField::multiply_add(const Eigen::Ref<const Eigen::MatrixXd>& x,
   const auto columns_of = [](const Eigen::MatrixXf& a, const Eigen::Ref<const Eigen::MatrixXd>& c,
                              Eigen::Ref<Eigen::MatrixXd> out) {  // out += A c
     if (a.size() > 0)
-      add_scaled_columns(a.data(), a.rows(), a.rows(), a.cols(), nullptr, c, out);
+      linalg::add_scaled_columns(a.data(), a.rows(), a.rows(), a.cols(), nullptr, c, out);
   };
   const auto dots_of = [](const Eigen::MatrixXf& a, const Eigen::Ref<const Eigen::MatrixXd>& c,
                           Eigen::Ref<Eigen::MatrixXd> out) {  // out += Aᵀ c
     if (a.size() > 0)
-      add_scaled_column_dots(a.data(), a.rows(), a.rows(), a.cols(), nullptr, c, out);
+      linalg::add_scaled_column_dots(a.data(), a.rows(), a.rows(), a.cols(), nullptr, c, out);
   };
   std::vector<Eigen::MatrixXd> up(static_cast<std::size_t>(clusters)),
       down(static_cast<std::size_t>(clusters));

@@ -4,7 +4,7 @@
 #include <catch2/catch.hpp>
 
 #include "fem/characteristic_function.hpp"
-#include "fem/conjugate_gradient.hpp"
+#include "linalg/conjugate_gradient.hpp"
 #include "fem/multigrid.hpp"
 
 using namespace bemshape;
@@ -104,7 +104,7 @@ TEST_CASE("CG iteration counts do not grow with the grid (2-D, 32² to 256²)") 
                     options);
     const Eigen::MatrixXd b = shape_feature_load<2>(grid);
     Eigen::MatrixXd x;
-    const auto report = conjugate_gradient(mg.fine_operator(), mg, b, x, 1e-8, 100);
+    const auto report = linalg::conjugate_gradient(mg.fine_operator(), mg, b, x, 1e-8, 100);
     REQUIRE(report.converged);
     iterations.push_back(report.iterations);
     // Independent check of the residual the report claims.
@@ -135,7 +135,7 @@ TEST_CASE("CG iteration counts do not grow with the grid (3-D, 16³ to 64³)") {
                     options);
     Eigen::MatrixXd x;
     const auto report =
-        conjugate_gradient(mg.fine_operator(), mg, shape_feature_load<3>(grid), x, 1e-8, 100);
+        linalg::conjugate_gradient(mg.fine_operator(), mg, shape_feature_load<3>(grid), x, 1e-8, 100);
     REQUIRE(report.converged);
     iterations.push_back(report.iterations);
   }

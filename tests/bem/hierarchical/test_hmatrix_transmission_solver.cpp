@@ -47,7 +47,7 @@ TEST_CASE("H-matrix solver = dense solver on the ball and the closed form at its
   CHECK(coarse.report.preconditioned_residual <= 1e-6);
   CHECK(coarse.report.residual <= 1e-6);
   bem::HMatrixSolverOptions right;
-  right.preconditioner_side = bem::PreconditionerSide::right;
+  right.preconditioner_side = linalg::PreconditionerSide::right;
   const auto on_the_right = bem::solve_transmission_hmatrix(mesh, kParameters, right);
   CAPTURE(relative(coarse.q, dense.q), relative(on_the_right.q, dense.q),
           coarse.report.iterations, on_the_right.report.iterations);

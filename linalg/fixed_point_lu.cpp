@@ -1,14 +1,14 @@
-#include "bem/hierarchical/fixed_point_lu.hpp"
+#include "linalg/fixed_point_lu.hpp"
 
 #include <cmath>
 #include <limits>
 
 #include <Eigen/LU>
 
-#include "bem/hierarchical/mixed_precision_products.hpp"
+#include "linalg/mixed_precision_products.hpp"
 #include "core/assert.hpp"
 
-namespace bemshape::bem {
+namespace bemshape::linalg {
 namespace {
 
 constexpr double kLevels = std::numeric_limits<std::int16_t>::max();
@@ -89,4 +89,4 @@ std::uint64_t FixedPointLu::bytes() const {
          4 * std::uint64_t(diagonal_.size() + upper_scale_.size() + lower_scale_.size() + order_.size());
 }
 
-}  // namespace bemshape::bem
+}  // namespace bemshape::linalg

@@ -1,4 +1,4 @@
-// bem/hierarchical/fixed_point_lu.hpp: the stored factors solve a matrix within the stated
+// linalg/fixed_point_lu.hpp: the stored factors solve a matrix within the stated
 // backward error of the original, pivots are not rounded away, and the memory is 2 bytes per
 // entry.
 #include <catch2/catch.hpp>
@@ -8,7 +8,7 @@
 
 #include <Eigen/LU>
 
-#include "bem/hierarchical/fixed_point_lu.hpp"
+#include "linalg/fixed_point_lu.hpp"
 
 using namespace bemshape;
 
@@ -23,7 +23,7 @@ TEST_CASE("Fixed-point LU: solves a nearby matrix, with the backward error the f
   m(0, 0) = 1e-6;
   for (Eigen::Index j = 0; j < n; ++j) m.col(j) *= std::pow(10.0, 3.0 * double(j) / double(n));
   const Eigen::MatrixXf mf = m.cast<float>();
-  const bem::FixedPointLu lu(mf);
+  const linalg::FixedPointLu lu(mf);
   CHECK(lu.size() == n);
   CHECK(lu.bytes() == 2 * std::uint64_t(n * n) + 16 * std::uint64_t(n));
 
@@ -48,7 +48,7 @@ TEST_CASE("Fixed-point LU: solves a nearby matrix, with the backward error the f
 TEST_CASE("Fixed-point LU: identity and a permutation are solved exactly") {
   Eigen::MatrixXf p = Eigen::MatrixXf::Zero(9, 9);
   for (int i = 0; i < 9; ++i) p(i, (i * 4) % 9) = 2.0f;  // a scaled permutation
-  const bem::FixedPointLu lu(p);
+  const linalg::FixedPointLu lu(p);
   Eigen::MatrixXd b = Eigen::VectorXd::LinSpaced(9, 1.0, 9.0), x = b;
   lu.solve_in_place(x);
   CHECK((p.cast<double>() * x - b).norm() == 0.0);

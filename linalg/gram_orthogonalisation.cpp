@@ -1,11 +1,11 @@
-#include "bem/hierarchical/gram_orthogonalisation.hpp"
+#include "linalg/gram_orthogonalisation.hpp"
 
 #include <algorithm>
 #include <limits>
 
 #include <Eigen/Eigenvalues>
 
-namespace bemshape::bem {
+namespace bemshape::linalg {
 
 double resolved_eigenvalues(double epsilon) {
   constexpr double u = 0.5 * std::numeric_limits<double>::epsilon();
@@ -31,4 +31,4 @@ void orthogonalise_columns(Eigen::Ref<Eigen::MatrixXd> c, Eigen::Ref<Eigen::Matr
   orthogonalise_columns(c.leftCols(small), w.leftCols(small), negligible2, resolved);
 }
 
-}  // namespace bemshape::bem
+}  // namespace bemshape::linalg

@@ -1,4 +1,4 @@
-// bem/hierarchical/gmres.hpp: restarted GMRES on small non-symmetric systems against a
+// linalg/gmres.hpp: restarted GMRES on small non-symmetric systems against a
 // direct solve; the reported residual is the true one; an exact preconditioner converges in
 // one step on either side; preconditioned on the left, the tolerance bounds the
 // preconditioned residual; a singular, inconsistent system is reported as not converged.
@@ -9,7 +9,7 @@
 
 #include <Eigen/LU>
 
-#include "bem/hierarchical/gmres.hpp"
+#include "linalg/gmres.hpp"
 
 using namespace bemshape;
 
@@ -24,7 +24,7 @@ Eigen::MatrixXd test_matrix(int n, unsigned seed) {
 }
 
 /// M⁻¹ = A⁻¹ by an LU factorisation of A: GMRES converges in one step on either side.
-bem::LinearOperator exact_inverse(const Eigen::MatrixXd& a) {
+linalg::LinearOperator exact_inverse(const Eigen::MatrixXd& a) {
   return [lu = Eigen::PartialPivLU<Eigen::MatrixXd>(a)](const Eigen::VectorXd& v, Eigen::VectorXd& z) {
     z = lu.solve(v);
   };
@@ -35,19 +35,19 @@ TEST_CASE("GMRES: restarted solve of a non-symmetric system, true residual repor
   const int n = 200;
   const Eigen::MatrixXd a = test_matrix(n, 3);
   const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(n, -1.0, 2.0);
-  const bem::LinearOperator op = [&](const Eigen::VectorXd& x, Eigen::VectorXd& y) { y = a * x; };
+  const linalg::LinearOperator op = [&](const Eigen::VectorXd& x, Eigen::VectorXd& y) { y = a * x; };
   Eigen::VectorXd x;
-  bem::GmresOptions options;
+  linalg::GmresOptions options;
   options.tolerance = 1e-10;
   options.restart = 8;  // forces restarts
-  const bem::GmresResult r = bem::gmres(op, {}, b, x, options);
+  const linalg::GmresResult r = linalg::gmres(op, {}, b, x, options);
   CHECK(r.converged);
   CHECK(r.residual <= 1e-10);
   CHECK(r.residual == Approx((b - a * x).norm() / b.norm()).epsilon(1e-3).margin(1e-14));
   CHECK((x - a.partialPivLu().solve(b)).norm() < 1e-8 * x.norm());
 
   Eigen::VectorXd x2;
-  const bem::GmresResult r2 = bem::gmres(op, exact_inverse(a), b, x2, options);
+  const linalg::GmresResult r2 = linalg::gmres(op, exact_inverse(a), b, x2, options);
   CHECK(r2.converged);
   CHECK(r2.iterations == 1);
 }
@@ -63,16 +63,16 @@ TEST_CASE("GMRES preconditioned on the left: the tolerance bounds M⁻¹ times t
   a = d.asDiagonal() * a;
   const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(n, 0.0, 4.0).array().cos();
   const Eigen::VectorXd exact = a.partialPivLu().solve(b);
-  const bem::LinearOperator op = [&](const Eigen::VectorXd& x, Eigen::VectorXd& y) { y = a * x; };
-  const bem::LinearOperator scaling = [&](const Eigen::VectorXd& r, Eigen::VectorXd& z) {
+  const linalg::LinearOperator op = [&](const Eigen::VectorXd& x, Eigen::VectorXd& y) { y = a * x; };
+  const linalg::LinearOperator scaling = [&](const Eigen::VectorXd& r, Eigen::VectorXd& z) {
     z = r.cwiseQuotient(d);
   };
-  bem::GmresOptions options;
+  linalg::GmresOptions options;
   options.tolerance = 1e-8;
   options.restart = 9;  // restarts, each ending with the true and the preconditioned residual
-  options.side = bem::PreconditionerSide::left;
+  options.side = linalg::PreconditionerSide::left;
   Eigen::VectorXd x;
-  const bem::GmresResult r = bem::gmres(op, scaling, b, x, options);
+  const linalg::GmresResult r = linalg::gmres(op, scaling, b, x, options);
   CAPTURE(r.iterations, r.residual, r.preconditioned_residual);
   CHECK(r.converged);
   CHECK(r.iterations > 9);
@@ -86,7 +86,7 @@ TEST_CASE("GMRES preconditioned on the left: the tolerance bounds M⁻¹ times t
 
   // An exact preconditioner: M⁻¹A = I, one step.
   Eigen::VectorXd x2;
-  const bem::GmresResult r2 = bem::gmres(op, exact_inverse(a), b, x2, options);
+  const linalg::GmresResult r2 = linalg::gmres(op, exact_inverse(a), b, x2, options);
   CHECK(r2.converged);
   CHECK(r2.iterations == 1);
   CHECK((x2 - exact).norm() <= 1e-10 * exact.norm());
@@ -96,16 +96,16 @@ TEST_CASE("GMRES: an inconsistent singular system is reported as not converged")
   Eigen::MatrixXd a = Eigen::MatrixXd::Identity(10, 10);
   a(9, 9) = 0.0;
   Eigen::VectorXd b = Eigen::VectorXd::Ones(10);
-  const bem::LinearOperator op = [&](const Eigen::VectorXd& x, Eigen::VectorXd& y) { y = a * x; };
+  const linalg::LinearOperator op = [&](const Eigen::VectorXd& x, Eigen::VectorXd& y) { y = a * x; };
   Eigen::VectorXd x;
-  const bem::GmresResult r = bem::gmres(op, {}, b, x);
+  const linalg::GmresResult r = linalg::gmres(op, {}, b, x);
   CHECK(!r.converged);
   CHECK(r.residual == Approx(1.0 / std::sqrt(10.0)).epsilon(1e-6));
 }
 
 TEST_CASE("GMRES in lockstep: each column as if solved alone, one product per step for all") {
-  const auto side = GENERATE(bem::PreconditionerSide::right, bem::PreconditionerSide::left);
-  CAPTURE(side == bem::PreconditionerSide::left);
+  const auto side = GENERATE(linalg::PreconditionerSide::right, linalg::PreconditionerSide::left);
+  CAPTURE(side == linalg::PreconditionerSide::left);
   const int n = 150;
   const Eigen::MatrixXd a = test_matrix(n, 11);
   Eigen::MatrixXd b(n, 4);
@@ -113,7 +113,7 @@ TEST_CASE("GMRES in lockstep: each column as if solved alone, one product per st
   b.col(1).setZero();                                         // done at once, x = 0
   b.col(2) = a.col(5);                                        // x = e_5
   b.col(3) = Eigen::VectorXd::LinSpaced(n, 0.0, 1.0).array().sin();
-  bem::GmresOptions options;
+  linalg::GmresOptions options;
   options.tolerance = 1e-9;
   options.restart = 7;  // several restarts, at different steps for different columns
   options.side = side;
@@ -121,29 +121,29 @@ TEST_CASE("GMRES in lockstep: each column as if solved alone, one product per st
   const Eigen::VectorXd inverse_diagonal = a.diagonal().cwiseInverse();
 
   int block_products = 0, columns_multiplied = 0;
-  const bem::ColumnsOperator a_columns = [&](const Eigen::MatrixXd& x, Eigen::MatrixXd& y) {
+  const linalg::ColumnsOperator a_columns = [&](const Eigen::MatrixXd& x, Eigen::MatrixXd& y) {
     ++block_products;
     columns_multiplied += int(x.cols());
     y = a * x;
   };
-  const bem::ColumnsOperator m_columns = [&](const Eigen::MatrixXd& r, Eigen::MatrixXd& z) {
+  const linalg::ColumnsOperator m_columns = [&](const Eigen::MatrixXd& r, Eigen::MatrixXd& z) {
     z = inverse_diagonal.asDiagonal() * r;
   };
   Eigen::MatrixXd x;
-  const std::vector<bem::GmresResult> together = bem::gmres_columns(a_columns, m_columns, b, x, options);
+  const std::vector<linalg::GmresResult> together = linalg::gmres_columns(a_columns, m_columns, b, x, options);
   REQUIRE(together.size() == 4);
 
   int separate_products = 0;
-  const bem::LinearOperator a_vector = [&](const Eigen::VectorXd& v, Eigen::VectorXd& y) {
+  const linalg::LinearOperator a_vector = [&](const Eigen::VectorXd& v, Eigen::VectorXd& y) {
     ++separate_products;
     y = a * v;
   };
-  const bem::LinearOperator m_vector = [&](const Eigen::VectorXd& r, Eigen::VectorXd& z) {
+  const linalg::LinearOperator m_vector = [&](const Eigen::VectorXd& r, Eigen::VectorXd& z) {
     z = inverse_diagonal.cwiseProduct(r);
   };
   for (int c = 0; c < 4; ++c) {
     Eigen::VectorXd xc;
-    const bem::GmresResult alone = bem::gmres(a_vector, m_vector, b.col(c), xc, options);
+    const linalg::GmresResult alone = linalg::gmres(a_vector, m_vector, b.col(c), xc, options);
     CHECK(together[size_t(c)].converged);
     CHECK(together[size_t(c)].iterations == alone.iterations);
     CHECK(together[size_t(c)].residual == Approx(alone.residual).epsilon(1e-6).margin(1e-15));

@@ -24,7 +24,7 @@
 
 #include <Eigen/Core>
 
-namespace bemshape::bem {
+namespace bemshape::linalg {
 
 /// y = A x (or y = M⁻¹ x for a preconditioner); y is sized by the caller's operator.
 using LinearOperator = std::function<void(const Eigen::VectorXd& x, Eigen::VectorXd& y)>;
@@ -67,4 +67,4 @@ std::vector<GmresResult> gmres_columns(
     Eigen::MatrixXd& x, const GmresOptions& options = {},
     const std::function<void(int column, int iteration, double residual)>& monitor = {});
 
-}  // namespace bemshape::bem
+}  // namespace bemshape::linalg

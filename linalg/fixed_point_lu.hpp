@@ -10,7 +10,7 @@
 // and every column part is rounded by at most 2^−16 of its largest entry, so ‖δM‖ is about
 // 1e−5 of ‖|L||U|‖ — of ‖M‖ up to partial pivoting's growth. solve_in_place applies
 // (M + δM)⁻¹ exactly (up to double-precision rounding). For the block preconditioner
-// (cluster_block_preconditioner.hpp) that is a block Jacobi preconditioner of blocks
+// (bem/hierarchical/cluster_block_preconditioner.hpp) that is a block Jacobi preconditioner of blocks
 // perturbed by 1e−5 relative, far less than what block Jacobi leaves out: on the benchmarks'
 // spheres and thin-walled boxes the GMRES iteration counts and the solutions' agreement with
 // the dense path are unchanged (docs/benchmarks.md).
@@ -20,7 +20,7 @@
 
 #include <Eigen/Core>
 
-namespace bemshape::bem {
+namespace bemshape::linalg {
 
 class FixedPointLu {
  public:
@@ -43,4 +43,4 @@ class FixedPointLu {
   std::vector<std::int32_t> order_;    ///< (P x)(i) = x(order_[i])
 };
 
-}  // namespace bemshape::bem
+}  // namespace bemshape::linalg

@@ -8,7 +8,7 @@
 
 #include <Eigen/Core>
 
-namespace bemshape::bem {
+namespace bemshape::linalg {
 
 /// Which eigenvalues of a Gram matrix are resolved again, on their own columns: rounding of
 /// CᵀC, about u·λ_max (u = 2⁻⁵³), turns each eigenvector by about u·λ_max/gap, which moves
@@ -31,4 +31,4 @@ double resolved_eigenvalues(double epsilon);
 void orthogonalise_columns(Eigen::Ref<Eigen::MatrixXd> c, Eigen::Ref<Eigen::MatrixXd> w,
                            double negligible2, double resolved);
 
-}  // namespace bemshape::bem
+}  // namespace bemshape::linalg

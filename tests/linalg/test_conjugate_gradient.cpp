@@ -6,10 +6,10 @@
 #include <Eigen/Cholesky>
 
 #include "core/errors.hpp"
-#include "fem/conjugate_gradient.hpp"
+#include "linalg/conjugate_gradient.hpp"
 
 using namespace bemshape;
-using namespace bemshape::fem;
+using namespace bemshape::linalg;
 
 namespace {
 

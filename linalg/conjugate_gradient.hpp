@@ -19,7 +19,7 @@
 #include "core/errors.hpp"
 #include "core/progress.hpp"
 
-namespace bemshape::fem {
+namespace bemshape::linalg {
 
 struct ConjugateGradientReport {
   int iterations = 0;                      ///< iterations until the last column converged
@@ -121,4 +121,4 @@ ConjugateGradientReport conjugate_gradient(const Operator& A, const Precondition
   return report;
 }
 
-}  // namespace bemshape::fem
+}  // namespace bemshape::linalg

@@ -12,7 +12,7 @@
 // ln 2 split in two parts (Cody–Waite) so that r is exact to rounding, and 2^k built in the
 // exponent bits. The Taylor remainder relative to e^r is at most (ln 2/2)^13/13! · 2 =
 // 3.3e−16, so with rounding the result is within 6e−16 relative of e^x for −708 ≤ x ≤ 709
-// (tests/bem/test_vector_exponential.cpp); below −708 it is 0 (the true value, under
+// (tests/linalg/test_vector_exponential.cpp); below −708 it is 0 (the true value, under
 // 3.3e−308, is a subnormal), above 709 it is e^709. A NaN stays NaN. On a 2-core Zen 3 an
 // entry costs 1.4–1.7 ns against Eigen's 2.2–2.7 ns (`bench_panel_integrals`;
 // docs/benchmarks.md, eleventh session).
@@ -30,7 +30,7 @@
 #define BEMSHAPE_VECTOR_EXPONENTIAL_AVX2 1
 #endif
 
-namespace bemshape::bem {
+namespace bemshape::linalg {
 
 #if defined(BEMSHAPE_VECTOR_EXPONENTIAL_AVX2)
 namespace detail {
@@ -97,4 +97,4 @@ Array vector_exp(const Expression& x) {
 #endif
 }
 
-}  // namespace bemshape::bem
+}  // namespace bemshape::linalg

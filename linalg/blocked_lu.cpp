@@ -1,4 +1,4 @@
-#include "bem/blocked_lu.hpp"
+#include "linalg/blocked_lu.hpp"
 
 #include <algorithm>
 #include <utility>
@@ -6,7 +6,7 @@
 #include "core/assert.hpp"
 #include "core/cancellation.hpp"
 
-namespace bemshape::bem {
+namespace bemshape::linalg {
 namespace {
 
 /// Factorises the panel a(k:N, k:k+w) column by column (unblocked partial pivoting); row
@@ -69,4 +69,4 @@ Eigen::MatrixXd lu_solve(const LuFactors& factors, const Eigen::Ref<const Eigen:
   return x;
 }
 
-}  // namespace bemshape::bem
+}  // namespace bemshape::linalg

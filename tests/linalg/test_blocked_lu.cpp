@@ -1,11 +1,11 @@
-// bem/blocked_lu.hpp: the panel-wise LU gives the same solution as Eigen's partial-pivot LU
+// linalg/blocked_lu.hpp: the panel-wise LU gives the same solution as Eigen's partial-pivot LU
 // to rounding, keeps a zero pivot for the caller to detect, and stops between panels when
 // the run is cancelled.
 #include <catch2/catch.hpp>
 
 #include <Eigen/LU>
 
-#include "bem/blocked_lu.hpp"
+#include "linalg/blocked_lu.hpp"
 #include "core/cancellation.hpp"
 
 using namespace bemshape;
@@ -28,8 +28,8 @@ TEST_CASE("blocked LU solves like Eigen's partial-pivot LU, across several panel
   for (const Eigen::Index n : {Eigen::Index(1), Eigen::Index(5), Eigen::Index(300)}) {
     const Eigen::MatrixXd a = test_matrix(n);
     const Eigen::MatrixXd b = Eigen::MatrixXd::Random(n, 3);
-    const bem::LuFactors f = bem::lu_factorise(a);
-    const Eigen::MatrixXd x = bem::lu_solve(f, b);
+    const linalg::LuFactors f = linalg::lu_factorise(a);
+    const Eigen::MatrixXd x = linalg::lu_solve(f, b);
     const Eigen::MatrixXd reference = a.partialPivLu().solve(b);
     CAPTURE(n);
     CHECK((a * x - b).norm() / b.norm() < 1e-13);
@@ -43,14 +43,14 @@ TEST_CASE("blocked LU solves like Eigen's partial-pivot LU, across several panel
 TEST_CASE("blocked LU of a singular matrix gives a non-finite solution, not a plausible one") {
   Eigen::MatrixXd a = test_matrix(200);
   a.col(150).setZero();  // exactly singular
-  const Eigen::MatrixXd x = bem::lu_solve(bem::lu_factorise(a), Eigen::MatrixXd::Ones(200, 1));
+  const Eigen::MatrixXd x = linalg::lu_solve(linalg::lu_factorise(a), Eigen::MatrixXd::Ones(200, 1));
   CHECK_FALSE(x.allFinite());
 }
 
 TEST_CASE("blocked LU stops with CancelledError once the deadline has passed") {
   const Eigen::MatrixXd a = test_matrix(400);
   set_deadline(1e-9);
-  CHECK_THROWS_AS(bem::lu_factorise(a), CancelledError);
+  CHECK_THROWS_AS(linalg::lu_factorise(a), CancelledError);
   clear_cancellation();
-  CHECK_NOTHROW(bem::lu_factorise(a));
+  CHECK_NOTHROW(linalg::lu_factorise(a));
 }

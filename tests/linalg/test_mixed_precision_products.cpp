@@ -1,4 +1,4 @@
-// bem/hierarchical/mixed_precision_products.hpp: products of float, int16 and int8 matrices
+// linalg/mixed_precision_products.hpp: products of float, int16 and int8 matrices
 // with per-column scales and double vectors equal the products of the widened matrix, for
 // every number of right-hand sides (they are taken four at a time), row counts that are not
 // multiples of the 8 partial sums or the 256-row blocks, and strided operands.
@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <random>
 
-#include "bem/hierarchical/mixed_precision_products.hpp"
+#include "linalg/mixed_precision_products.hpp"
 
 using namespace bemshape;
 
@@ -29,7 +29,7 @@ void check_products(std::mt19937& rng) {
     // Y += A S C into rows 3 … 3 + rows of a larger matrix (outer stride ≠ rows).
     Eigen::MatrixXd c(cols, k), big = Eigen::MatrixXd::Constant(rows + 10, k, 0.5);
     for (double& e : c.reshaped()) e = g(rng);
-    bem::add_scaled_columns(a.data(), rows, rows, cols, scale.data(), c, big.middleRows(3, rows));
+    linalg::add_scaled_columns(a.data(), rows, rows, cols, scale.data(), c, big.middleRows(3, rows));
     const Eigen::MatrixXd y_expected = Eigen::MatrixXd::Constant(rows, k, 0.5) + wide * c;
     CHECK((big.middleRows(3, rows) - y_expected).norm() <= 1e-14 * y_expected.norm());
     CHECK(big.topRows(3).isConstant(0.5, 0.0));
@@ -37,14 +37,14 @@ void check_products(std::mt19937& rng) {
     // T += S Aᵀ X.
     Eigen::MatrixXd x(rows, k), t = Eigen::MatrixXd::Ones(cols, k);
     for (double& e : x.reshaped()) e = g(rng);
-    bem::add_scaled_column_dots(a.data(), rows, rows, cols, scale.data(), x, t);
+    linalg::add_scaled_column_dots(a.data(), rows, rows, cols, scale.data(), x, t);
     const Eigen::MatrixXd t_expected = Eigen::MatrixXd::Ones(cols, k) + wide.transpose() * x;
     CHECK((t - t_expected).norm() <= 1e-14 * t_expected.norm());
   }
   // No scales: the stored values themselves; a leading dimension larger than the rows used
   // (the first 200 rows of A).
   Eigen::MatrixXd c = Eigen::MatrixXd::Ones(cols, 3), y = Eigen::MatrixXd::Zero(200, 3);
-  bem::add_scaled_columns(a.data(), rows, 200, cols, nullptr, c, y);
+  linalg::add_scaled_columns(a.data(), rows, 200, cols, nullptr, c, y);
   const Eigen::VectorXd sums = a.template cast<double>().topRows(200).rowwise().sum();
   CHECK((y.col(2) - sums).norm() <= 1e-14 * sums.norm());
 }

@@ -4,9 +4,9 @@
 
 #include <Eigen/Core>
 
-#include "bem/vector_exponential.hpp"
+#include "linalg/vector_exponential.hpp"
 
-using bemshape::bem::vector_exp;
+using bemshape::linalg::vector_exp;
 
 namespace {
 /// |e − e^x| / e^x with e^x in long double (64-bit mantissa on x86-64), the reference.

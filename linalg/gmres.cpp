@@ -1,10 +1,10 @@
-#include "bem/hierarchical/gmres.hpp"
+#include "linalg/gmres.hpp"
 
 #include <cmath>
 
 #include <Eigen/Dense>
 
-namespace bemshape::bem {
+namespace bemshape::linalg {
 namespace {
 
 /// An Arnoldi vector shorter than this fraction of its operator image before
@@ -304,4 +304,4 @@ GmresResult gmres(const LinearOperator& a, const LinearOperator& preconditioner,
   return results.front();
 }
 
-}  // namespace bemshape::bem
+}  // namespace bemshape::linalg

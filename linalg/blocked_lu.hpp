@@ -13,7 +13,7 @@
 
 #include "core/progress.hpp"
 
-namespace bemshape::bem {
+namespace bemshape::linalg {
 
 /// Columns per panel: wide enough that the trailing matrix product runs near peak speed,
 /// narrow enough that a cancellation waits for at most one product of 2·N²·128 flops.
@@ -36,4 +36,4 @@ LuFactors lu_factorise(Eigen::MatrixXd a, const ProgressCallback& progress = {})
 /// Solves A·X = B (B: N×m) with the factors of A.
 Eigen::MatrixXd lu_solve(const LuFactors& factors, const Eigen::Ref<const Eigen::MatrixXd>& b);
 
-}  // namespace bemshape::bem
+}  // namespace bemshape::linalg
