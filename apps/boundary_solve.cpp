@@ -7,9 +7,9 @@
 #include <sstream>
 
 #include "apps/report_text.hpp"
-#include "bem/dense_transmission_solver.hpp"
-#include "bem/hmatrix_transmission_solver.hpp"
-#include "bem/transmission_parameters.hpp"
+#include "bem/solve/dense_transmission_solver.hpp"
+#include "bem/solve/hmatrix_transmission_solver.hpp"
+#include "bem/kernels/transmission_parameters.hpp"
 #include "core/errors.hpp"
 #include "core/memory.hpp"
 #include "geometry/isotropic_remeshing.hpp"
@@ -94,7 +94,7 @@ BoundarySolveRun prepare_and_solve(const BoundarySolveSetup& given, StageTimes& 
   if (method == "hmatrix" || (method == "auto" && faces > kAutoDenseFaces)) {
     bem::HMatrixSolverOptions options;
     options.tolerance = setup.solver.tolerance;
-    // ε two digits below the Krylov tolerance (bem/hmatrix_transmission_solver.hpp).
+    // ε two digits below the Krylov tolerance (bem/solve/hmatrix_transmission_solver.hpp).
     options.aca_tolerance = 1e-2 * setup.solver.tolerance;
     // A single-precision H-matrix perturbs a product by about 4e−7: fine for a residual of
     // 1e−6, not for a tighter one.

@@ -2,7 +2,7 @@
 // The stages `bemshape thickness` and `bemshape features` share: read, validate and repair
 // the input (geometry/mesh_preparation.hpp), refine it to the solver's element size
 // (geometry/isotropic_remeshing.hpp) and solve the transmission problem for s_1, s_2, s_3
-// (bem/dense_transmission_solver.hpp).
+// (bem/solve/dense_transmission_solver.hpp).
 //
 // Element size: the solver mesh's edges are about `max_edge` (none longer than 1.3 times
 // it, geometry::RemeshingOptions::max_edge_ratio) if the user gave it, else the default rule
@@ -14,7 +14,7 @@
 #include <string>
 
 #include "apps/stage_times.hpp"
-#include "bem/boundary_solution.hpp"
+#include "bem/solve/boundary_solution.hpp"
 #include "core/progress.hpp"
 #include "geometry/isotropic_remeshing.hpp"
 #include "geometry/mesh_preparation.hpp"

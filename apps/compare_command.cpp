@@ -27,7 +27,7 @@
 #include "apps/text_histogram.hpp"
 #include "apps/thickness_statistics.hpp"
 #include "apps/voxel_memory_check.hpp"
-#include "bem/potential_evaluation.hpp"
+#include "bem/evaluate/potential_evaluation.hpp"
 #include "core/errors.hpp"
 #include "features/point_features.hpp"
 #include "features/thickness.hpp"

@@ -23,7 +23,7 @@
 #include "apps/run_limits.hpp"
 #include "apps/solver_mesh_options.hpp"
 #include "apps/stage_times.hpp"
-#include "bem/potential_evaluation.hpp"
+#include "bem/evaluate/potential_evaluation.hpp"
 #include "core/errors.hpp"
 #include "features/point_features.hpp"
 

@@ -3,7 +3,7 @@
 //  [--a 0.2] [--max-edge E] [--skeleton-width W] [--threads N] [--quiet] [--max-memory SIZE]
 //  [--timeout S]`:
 // the shape features inside the solid, at the user's points or on a regular grid over the
-// part's bounding box, by the boundary integral representation (bem/potential_evaluation.hpp)
+// part's bounding box, by the boundary integral representation (bem/evaluate/potential_evaluation.hpp)
 // — no volume mesh. Per point: inside flag, s, f_h, h_f, h_p, n_f, skeleton. docs/usage.md
 // documents the columns.
 

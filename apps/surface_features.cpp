@@ -2,7 +2,7 @@
 
 #include <vector>
 
-#include "bem/surface_gradient.hpp"
+#include "bem/evaluate/surface_gradient.hpp"
 #include "features/point_features.hpp"
 #include "geometry/closest_point.hpp"
 

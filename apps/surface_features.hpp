@@ -2,7 +2,7 @@
 // Shape features on the surface of the solid, from the interior side, and their transfer
 // from the refined solver mesh back to the user's (original) mesh.
 //
-// On the solver mesh (bem/surface_gradient.hpp gives ∇s per face and per vertex):
+// On the solver mesh (bem/evaluate/surface_gradient.hpp gives ∇s per face and per vertex):
 //   per vertex: s = reconstructed vertex value, ∇s = vertex gradient (the area-weighted mean
 //               of the adjacent faces' gradients)
 //   per face:   s = φ (P0 value), ∇s = mean of the three corner vertex gradients
@@ -29,7 +29,7 @@
 
 #include <Eigen/Core>
 
-#include "bem/boundary_solution.hpp"
+#include "bem/solve/boundary_solution.hpp"
 #include "features/feature_parameters.hpp"
 #include "geometry/surface_mesh.hpp"
 

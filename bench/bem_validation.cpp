@@ -11,9 +11,9 @@
 #include <random>
 #include <string>
 
-#include "bem/dense_transmission_solver.hpp"
-#include "bem/potential_evaluation.hpp"
-#include "bem/surface_gradient.hpp"
+#include "bem/solve/dense_transmission_solver.hpp"
+#include "bem/evaluate/potential_evaluation.hpp"
+#include "bem/evaluate/surface_gradient.hpp"
 #include "geometry/primitive_meshes.hpp"
 #include "tests/support/closed_forms.hpp"
 

@@ -36,16 +36,16 @@
 
 #include <sys/resource.h>
 
-#include "bem/dense_transmission_solver.hpp"
-#include "bem/galerkin_operators.hpp"
-#include "bem/hierarchical/galerkin_block_generator.hpp"
-#include "bem/hierarchical/nested_cluster_basis.hpp"
-#include "bem/hierarchical/nested_far_field.hpp"
-#include "bem/hmatrix_transmission_solver.hpp"
-#include "bem/laplace_kernel.hpp"
-#include "bem/potential_evaluation.hpp"
-#include "bem/surface_gradient.hpp"
-#include "bem/yukawa_kernel.hpp"
+#include "bem/solve/dense_transmission_solver.hpp"
+#include "bem/operators/galerkin_operators.hpp"
+#include "bem/operators/galerkin_block_generator.hpp"
+#include "bench/nested_cluster_basis.hpp"
+#include "bem/hmatrix/nested_far_field.hpp"
+#include "bem/solve/hmatrix_transmission_solver.hpp"
+#include "bem/kernels/laplace_kernel.hpp"
+#include "bem/evaluate/potential_evaluation.hpp"
+#include "bem/evaluate/surface_gradient.hpp"
+#include "bem/kernels/yukawa_kernel.hpp"
 #include "core/heap_retention.hpp"
 #include "core/huge_pages.hpp"
 #include "core/memory.hpp"
@@ -189,7 +189,7 @@ double thread_cpu_seconds() {
 
 /// Where a row of the Galerkin operators spends its time, on the sphere of `faces` faces at
 /// the default element size: pairs per row and microseconds per entry in each class of the
-/// entry generator's rule selection (bem/galerkin_operators.hpp), Yukawa and Laplace.
+/// entry generator's rule selection (bem/operators/galerkin_operators.hpp), Yukawa and Laplace.
 int entry_costs(double faces) {
   const Problem p = sphere(faces);
   const auto parameters = bem::TransmissionParameters::from_shape(p.h0, kA);
@@ -269,7 +269,7 @@ int entry_costs(double faces) {
 
 /// evaluate_potential at the nodes of a grid of about `points` nodes over the bounding box
 /// of a sphere or box of `faces` faces (enlarged by 5%, as `features --grid` covers the
-/// part): the tree sums (bem/hierarchical/laplace_treecode.hpp, yukawa_cutoff_sum.hpp)
+/// part): the tree sums (bem/evaluate/laplace_treecode.hpp, yukawa_cutoff_sum.hpp)
 /// timed on every node, the direct sums over every panel on `reference` nodes spread over
 /// the grid, their cost extrapolated to all nodes and their results compared. The boundary
 /// data are the ball's closed form s = A·x inside (φ = A·x at the centroids, q = A·n) unless
@@ -404,7 +404,7 @@ double best_product_seconds(Eigen::Index n, const Apply& apply) {
 }
 
 /// The Laplace row's far field [−K0 | V0] in the H² form against the H-matrix, on the sphere
-/// or the thin-walled box of `faces` faces (bem/hierarchical/nested_cluster_basis.hpp):
+/// or the thin-walled box of `faces` faces (bench/nested_cluster_basis.hpp):
 ///
 ///   bench_fast_path nested-bases sphere|box FACES [--aca E] [--eta H] [--leaf L] [--basis T]
 ///
@@ -437,7 +437,8 @@ int nested_bases(int argc, char** argv) {
   const Problem p = shape == "sphere" ? sphere(std::atof(argv[3])) : box(std::atof(argv[3]));
   const auto panels = bem::make_panels(p.mesh);
   const bem::ClusterTree tree(panels, leaf);
-  const bem::GalerkinBlockGenerator<bem::LaplaceKernel> generator(bem::LaplaceKernel{}, panels, tree);
+  const bem::GalerkinBlockGenerator<bem::LaplaceKernel> generator(bem::LaplaceKernel{}, panels,
+                                                                  tree.permutation());
   // Products with three vectors (the three directions of a solve), the best of three runs.
   const Eigen::Index n = p.mesh.num_faces();
   const Eigen::MatrixXd x = Eigen::MatrixXd::Random(n, 6);
@@ -452,11 +453,13 @@ int nested_bases(int argc, char** argv) {
   auto t0 = Clock::now();
   const bem::HierarchicalMatrix exact_factors(tree, generator, {aca, eta, false, false, false});
   const double assemble_seconds = seconds(t0);
-  const auto blocks = exact_factors.low_rank_blocks();
+  // The same low-rank blocks once more (the H-matrix keeps its factors to itself): the
+  // conversion's input, computed as the H-matrix computes them.
+  const auto blocks = bench::far_field_low_rank_blocks(tree, generator, aca, eta);
   std::uint64_t h_entries = 0;
   for (const auto& b : blocks) h_entries += std::uint64_t(b.U.size() + b.V.size());
   t0 = Clock::now();
-  const bem::NestedClusterBasis h2(tree, blocks, 2, basis_tolerance);
+  const bench::NestedClusterBasis h2(tree, blocks, 2, basis_tolerance);
   const double convert_seconds = seconds(t0);
   const auto storage = h2.storage();
   const double double_product = product_seconds([&](Eigen::MatrixXd& y) { exact_factors.multiply_add(x, y); });
@@ -498,7 +501,7 @@ int nested_bases(int argc, char** argv) {
   double worst = 0.0, sum = 0.0;
   long sampled = 0;
   for (std::size_t b = 0; b < blocks.size(); b += stride, ++sampled) {
-    const double e = bem::nested_basis_error_bound(blocks[b].U, blocks[b].V, h2.rows().expand(tree, h2.row_cluster(b)),
+    const double e = bench::nested_basis_error_bound(blocks[b].U, blocks[b].V, h2.rows().expand(tree, h2.row_cluster(b)),
                                                    h2.columns().expand(tree, h2.column_cluster(b)));
     worst = std::max(worst, e);
     sum += e;
@@ -524,7 +527,7 @@ int nested_bases(int argc, char** argv) {
 }
 
 /// The Laplace row's far field [−K0 | V0] in the H² form built from the kernel
-/// (bem/hierarchical/nested_far_field.hpp), on the sphere or the thin-walled box:
+/// (bem/hmatrix/nested_far_field.hpp), on the sphere or the thin-walled box:
 ///
 ///   bench_fast_path nested-far-field sphere|box FACES [--aca E] [--basis T] [--min-cluster S]
 ///   [--compare]
@@ -567,7 +570,7 @@ int nested_far_field(int argc, char** argv) {
   const auto panels = bem::make_panels(p.mesh);
   const bem::ClusterTree tree(panels);
   const bem::GalerkinBlockGenerator<bem::LaplaceKernel> generator(bem::LaplaceKernel{}, panels,
-                                                                  tree);
+                                                                  tree.permutation());
   const bem::BlockPartition partition = bem::partition_blocks(tree);
   // Blocks with a cluster of fewer than min_cluster panels stay in the H-matrix's form.
   bem::BlockPartition small;

@@ -1,7 +1,7 @@
 // Throughput of the panel integrals in a dense far-field loop: every (centroid, panel) pair of
 // a geodesic sphere whose distance ratio puts it in the Gauss range, as the dense assembly and
 // the ACA row/column generators will call them, and the far-field lanes those generators use
-// (V and K of 8 pairs at once, bem/far_field_lanes.hpp); then the cost per point of the larger
+// (V and K of 8 pairs at once, bem/operators/far_field_lanes.hpp); then the cost per point of the larger
 // Gauss rules (gauss_panel_integrals) on one panel and of the exponential per SIMD lane
 // (linalg/vector_exponential.hpp against Eigen's). Not a test: prints entries per second and
 // nanoseconds.
@@ -13,14 +13,14 @@
 #include <cstdlib>
 #include <vector>
 
-#include "bem/far_field_lanes.hpp"
-#include "bem/galerkin_operators.hpp"
-#include "bem/laplace_kernel.hpp"
-#include "bem/panel.hpp"
-#include "bem/panel_arrays.hpp"
-#include "bem/panel_integrals.hpp"
+#include "bem/operators/far_field_lanes.hpp"
+#include "bem/operators/galerkin_operators.hpp"
+#include "bem/kernels/laplace_kernel.hpp"
+#include "bem/quadrature/panel.hpp"
+#include "bem/operators/panel_arrays.hpp"
+#include "bem/quadrature/panel_integrals.hpp"
 #include "linalg/vector_exponential.hpp"
-#include "bem/yukawa_kernel.hpp"
+#include "bem/kernels/yukawa_kernel.hpp"
 #include "geometry/primitive_meshes.hpp"
 
 namespace {
@@ -149,7 +149,7 @@ int main(int argc, char** argv) {
             return r.single_layer + r.double_layer;
           });
   measure_far_field_lanes(panels);
-  // κ·diameter = 3, the default element size's (bem/transmission_parameters.hpp).
+  // κ·diameter = 3, the default element size's (bem/kernels/transmission_parameters.hpp).
   const bem::YukawaKernel yukawa_unit{3.0 / rule_panel().diameter};
   for (const int n : {4, 6, 8}) {
     measure_rule("Laplace Gauss rule, one panel", laplace, bem::collapsed_gauss_rule(n));

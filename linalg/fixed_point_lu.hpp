@@ -10,7 +10,7 @@
 // and every column part is rounded by at most 2^−16 of its largest entry, so ‖δM‖ is about
 // 1e−5 of ‖|L||U|‖ — of ‖M‖ up to partial pivoting's growth. solve_in_place applies
 // (M + δM)⁻¹ exactly (up to double-precision rounding). For the block preconditioner
-// (bem/hierarchical/cluster_block_preconditioner.hpp) that is a block Jacobi preconditioner of blocks
+// (bem/solve/cluster_block_preconditioner.hpp) that is a block Jacobi preconditioner of blocks
 // perturbed by 1e−5 relative, far less than what block Jacobi leaves out: on the benchmarks'
 // spheres and thin-walled boxes the GMRES iteration counts and the solutions' agreement with
 // the dense path are unchanged (docs/benchmarks.md).

@@ -3,8 +3,8 @@
 // that makes the columns of a tall matrix C orthogonal, i.e. C's singular vectors and values,
 // at the cost of forming CᵀC and one product C X instead of a singular value decomposition
 // of C. Used by the recompression of the cross approximation
-// (bem/hierarchical/adaptive_cross_approximation.hpp) and by the cluster bases of the H² far
-// field (bem/hierarchical/nested_far_field.hpp).
+// (bem/hmatrix/adaptive_cross_approximation.hpp) and by the cluster bases of the H² far
+// field (bem/hmatrix/nested_far_field.hpp).
 
 #include <Eigen/Core>
 

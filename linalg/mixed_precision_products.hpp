@@ -7,8 +7,8 @@
 // for A (rows × cols, column-major with leading dimension lda), S = diag(s) (all ones without
 // scales) and k = X.cols() = C.cols() right-hand sides. Each stored column is read once for
 // all k of them and widened in registers; the low-rank factors' products
-// (bem/hierarchical/adaptive_precision_factors.hpp) and the single-precision near-field blocks
-// (bem/hierarchical/hierarchical_matrix.cpp) go through these two functions.
+// (bem/hmatrix/adaptive_precision_factors.hpp) and the single-precision near-field blocks
+// (bem/hmatrix/hierarchical_matrix.cpp) go through these two functions.
 //
 // The sums are formed in a fixed order (each output row over the columns in turn; each dot
 // product in one partial sum per vector lane, added at the end), so a product is the same on

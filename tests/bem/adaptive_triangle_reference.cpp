@@ -1,4 +1,4 @@
-#include "adaptive_triangle_reference.hpp"
+#include "tests/bem/adaptive_triangle_reference.hpp"
 
 #include <cmath>
 #include <queue>
@@ -6,7 +6,7 @@
 
 #include <Eigen/Geometry>
 
-#include "bem/triangle_quadrature.hpp"
+#include "bem/quadrature/triangle_quadrature.hpp"
 
 namespace bemshape::testing {
 namespace {

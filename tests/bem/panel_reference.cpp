@@ -1,10 +1,10 @@
-#include "panel_reference.hpp"
+#include "tests/bem/panel_reference.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 
-#include "adaptive_triangle_reference.hpp"
+#include "tests/bem/adaptive_triangle_reference.hpp"
 
 namespace bemshape::testing {
 namespace {

@@ -1,12 +1,12 @@
 #pragma once
-// Brute-force reference values of the panel integrals (bem/panel_integral_values.hpp) by
+// Brute-force reference values of the panel integrals (bem/quadrature/panel_integral_values.hpp) by
 // adaptive subdivision (adaptive_triangle_reference.hpp), with the kernels written out here
 // independently of bem/: G = e^{−κr}/(4πr) (κ = 0: Laplace), ∂G/∂n_y = G'(r)(y − x)·n/r, and
 // the x-gradients of both.
 
 #include <Eigen/Core>
 
-#include "bem/panel.hpp"
+#include "bem/quadrature/panel.hpp"
 
 namespace bemshape::testing {
 

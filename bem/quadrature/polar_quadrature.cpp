@@ -1,0 +1,329 @@
+#include "bem/quadrature/polar_quadrature.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include "bem/quadrature/gauss_legendre.hpp"
+#include "bem/kernels/laplace_kernel.hpp"
+#include "linalg/vector_exponential.hpp"
+#include "bem/kernels/yukawa_kernel.hpp"
+
+namespace bemshape::bem {
+namespace {
+
+/// √(a² + b²) without std::hypot's overflow-safe scaling (the arguments are lengths of a
+/// panel's geometry, far from overflow, and std::hypot cost 11 % of an assembly).
+inline double length2d(double a, double b) { return std::sqrt(a * a + b * b); }
+
+using Vec2 = Eigen::Vector2d;
+
+/// Gauss–Legendre points per composite piece. The integrands in v (angle) and u (radius) are
+/// analytic in the strip |Im| < π/2; on pieces of width ≤ max_piece_width a 10-point rule
+/// converges like (6.4)^{−20} ≈ 1e−16 there, and the measured error stays below 1e−10
+/// (docs/quadrature.md, table).
+constexpr int points_per_piece = 10;
+/// Widest composite piece in v or u: keeps the Bernstein-ellipse argument above valid.
+constexpr double max_piece_width = 1.0;
+/// Pieces double in width away from the point of the edge nearest to x, where the e^{−κρ'}
+/// boundary layer and the near-singular behaviour are concentrated.
+constexpr double piece_growth = 2.0;
+/// An edge whose line passes closer than this fraction of the panel diameter to x' spans a
+/// triangle (x', edge) of zero area up to rounding: it contributes nothing and is skipped
+/// (its parametrisation t = p sinh v would divide by p ≈ 0).
+constexpr double on_line_tolerance = 1e-12;
+/// Targets closer than this fraction of the diameter to the panel's plane are in the plane
+/// (d = 0): rounding in d of a point computed on the panel is ~1e−16·diameter, and the double
+/// layer jumps by 1 across the plane, so this decides which side, or the principal value.
+constexpr double in_plane_tolerance = 1e-12;
+/// Yukawa only: when κ(ρ'_max − c) exceeds this, e^{−κρ'} varies by more than e across the
+/// panel and the constant part of each radial closed form is integrated exactly over θ
+/// (Θ e^{−κc}) instead of inside the quadrature; below it the combined form with expm1 avoids
+/// the cancellation 1 − e^{−κδ} for small κδ. Either is exact in exact arithmetic.
+constexpr double split_exponent = 1.0;
+/// Pieces where the exponential factor has decayed by e^{−45} ≈ 3e−20 relative to its value
+/// at the point nearest to x are dropped (far below the 1e−8 target and double rounding).
+constexpr double negligible_exponent = 45.0;
+
+double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+/// Composite Gauss–Legendre over the interval between `start` and `end` (either order):
+/// pieces begin at `start` with width w0 and grow by piece_growth up to max_piece_width.
+/// visit(s, w) receives nodes with positive weights (the integral over the interval, whatever
+/// its orientation); stop(s) is asked at the start of each piece and ends the walk when true.
+template <class Visit, class Stop>
+void graded_gauss(double start, double end, double w0, Visit&& visit, Stop&& stop) {
+  const GaussLegendreRule& gl = gauss_legendre(points_per_piece);
+  const double direction = end >= start ? 1.0 : -1.0;
+  const double length = std::abs(end - start);
+  double position = 0.0;
+  double width = std::min(w0, max_piece_width);
+  while (position < length) {
+    if (stop(start + direction * position)) return;
+    double piece = std::min(width, length - position);
+    // Merge a short remainder into this piece instead of leaving a sliver.
+    if (length - position - piece < 0.25 * piece) piece = length - position;
+    const double mid = start + direction * (position + 0.5 * piece);
+    for (int i = 0; i < points_per_piece; ++i)
+      visit(mid + direction * 0.5 * piece * gl.nodes[static_cast<size_t>(i)],
+            0.5 * piece * gl.weights[static_cast<size_t>(i)]);
+    position += piece;
+    width = std::min(width * piece_growth, max_piece_width);
+  }
+}
+
+/// The nodes and weights of graded_gauss, collected for evaluation as arrays.
+struct GradedNodes {
+  std::vector<double> nodes, weights;
+  void clear() {
+    nodes.clear();
+    weights.clear();
+  }
+  template <class Stop>
+  void append(double start, double end, double w0, Stop&& stop) {
+    graded_gauss(
+        start, end, w0,
+        [&](double s, double w) {
+          nodes.push_back(s);
+          weights.push_back(w);
+        },
+        stop);
+  }
+};
+
+/// Edge P1 → P2 in plane coordinates centred at x': unit direction u, foot of the
+/// perpendicular F = P1 − t1 u, abscissae t1 < t2 of the ends, distance p = |F| and the
+/// orientation σ of the triangle (x', P1, P2).
+struct EdgeFrame {
+  Vec2 foot, u;
+  double p = 0, sigma = 0, t1 = 0, t2 = 0;
+};
+
+/// Radial tails of the Yukawa in-plane gradients, for d ≠ 0 (variable ρ = |d| sinh u):
+///   T_SL(R) = ∫_U^∞ e^{−κ|d| cosh u}(1 + κ|d| cosh u) tanh²u du,
+///   T_DL(R) = ∫_U^∞ e^{−κ|d| cosh u}(κ²d²cosh²u + 3κ|d| cosh u + 3) sinh²u / cosh⁴u du,
+/// U = asinh(R/|d|). For d = 0, T_SL = E1(κR) + e^{−κR} and T_DL is not needed.
+std::array<double, 2> yukawa_tails(double kappa, double abs_d, double R, double rho) {
+  if (abs_d == 0.0) return {-std::expint(-kappa * R) + std::exp(-kappa * R), 0.0};
+  const double U = std::asinh(R / abs_d);
+  const double u_stop = std::acosh(rho / abs_d + negligible_exponent / (kappa * abs_d));
+  const double w0 = 1.0 / (kappa * R + std::sqrt(kappa * rho));
+  double t_sl = 0.0, t_dl = 0.0;
+  graded_gauss(
+      U, u_stop, w0,
+      [&](double u, double w) {
+        const double ch = std::cosh(u), th = std::tanh(u);
+        const double z = kappa * abs_d * ch;
+        const double e = std::exp(-z);
+        t_sl += w * e * (1.0 + z) * th * th;
+        t_dl += w * e * (z * z + 3.0 * z + 3.0) * th * th / (ch * ch);
+      },
+      [](double) { return false; });
+  return {t_sl, t_dl};
+}
+
+}  // namespace
+
+template <class Kernel>
+PanelIntegrals polar_panel_integrals(const Kernel& kernel, const Panel& panel,
+                                     const Eigen::Vector3d& x, bool with_gradients) {
+  constexpr bool yukawa = Kernel::has_exponential_decay;
+  const double kappa = kernel.kappa();
+  double d = (x - panel.corners[0]).dot(panel.normal);
+  // A collocation point on the panel (a centroid, say) has d at rounding level, of either sign;
+  // the double layer would then jump to ±½ instead of its principal value 0.
+  if (std::abs(d) <= in_plane_tolerance * panel.diameter) d = 0.0;
+  const double abs_d = std::abs(d);
+
+  std::array<Vec2, 3> P;
+  for (int k = 0; k < 3; ++k) {
+    const Eigen::Vector3d r = panel.corners[static_cast<size_t>(k)] - x;
+    P[static_cast<size_t>(k)] = Vec2(r.dot(panel.tangent1), r.dot(panel.tangent2));
+  }
+  const double tol = on_line_tolerance * panel.diameter;
+  std::array<EdgeFrame, 3> edges;
+  bool inside = true, outside = false;
+  for (size_t e = 0; e < 3; ++e) {
+    const Vec2& a = P[e];
+    const Vec2& b = P[(e + 1) % 3];
+    EdgeFrame& E = edges[e];
+    E.u = (b - a).normalized();
+    const double h = cross2(a, E.u);  // > 0 when x' is on the inner side of the edge
+    E.p = std::abs(h);
+    E.sigma = h > 0 ? 1.0 : -1.0;
+    E.t1 = a.dot(E.u);
+    E.t2 = b.dot(E.u);
+    E.foot = a - E.t1 * E.u;
+    if (h < -tol) outside = true;
+    if (h <= tol) inside = false;
+  }
+  // q: in-plane distance from x' to T (0 unless x' is outside); c = distance from x to T.
+  double q2 = 0.0;
+  if (outside) {
+    q2 = std::numeric_limits<double>::infinity();
+    for (const EdgeFrame& E : edges) {
+      const double tc = std::clamp(0.0, E.t1, E.t2);
+      q2 = std::min(q2, E.p * E.p + tc * tc);
+    }
+  }
+  const double c = std::sqrt(q2 + d * d);
+  // Θ: the total signed angle of T seen from x' (2π inside, 0 outside, the corner angle or π
+  // on the boundary).
+  double theta = 0.0;
+  if (inside) {
+    theta = 2.0 * std::numbers::pi;
+  } else if (!outside) {
+    for (const EdgeFrame& E : edges)
+      if (E.p > tol) theta += E.sigma * (std::atan(E.t2 / E.p) - std::atan(E.t1 / E.p));
+  }
+  double rho_max = 0.0;
+  for (const Vec2& Pk : P) rho_max = std::max(rho_max, length2d(Pk.norm(), d));
+  const bool split = yukawa && kappa * (rho_max - c) > split_exponent;
+  const double exp_c = yukawa ? std::exp(-kappa * c) : 1.0;
+  const double d_over_c = d == 0.0 ? 0.0 : d / c;
+
+  double sl = 0.0, dl = 0.0, g_dl_normal = 0.0;
+  Vec2 g_sl = Vec2::Zero(), g_dl = Vec2::Zero();
+  // ∫ e(θ) dθ over the angles the edges actually sweep. It vanishes for a closed loop, which
+  // lets the in-plane gradients drop θ-independent radial constants; when x' lies on an edge
+  // or at a corner that edge is skipped, the loop is open and the constants are added back.
+  bool edge_skipped = false;
+  Vec2 swept_direction = Vec2::Zero();
+
+  for (const EdgeFrame& E : edges) {
+    if (E.p <= tol) {
+      edge_skipped = true;
+      continue;
+    }
+    {
+      // ∫_{θ1}^{θ2} (cos θ, sin θ) dθ = −J(ê2 − ê1), J the rotation by +90°.
+      const Vec2 de = (E.foot + E.t2 * E.u).normalized() - (E.foot + E.t1 * E.u).normalized();
+      swept_direction += Vec2(de.y(), -de.x());
+    }
+    const double p = E.p;
+    // The in-plane gradients at one node (the values are summed over all nodes below).
+    auto visit_gradients = [&](double v, double w) {
+      const double ch = std::cosh(v);
+      const double R = p * ch;
+      const double rho = length2d(R, d);
+      const double dtheta = E.sigma * w / ch;
+      const double t = p * std::sinh(v);
+      const Vec2 dir = (E.foot + t * E.u) / R;
+      const double rho3 = rho * rho * rho;
+      if constexpr (!yukawa) {
+        g_sl += dtheta * (std::log(R + rho) - R / rho) * dir;
+        g_dl_normal -= dtheta * R * R / rho3;
+        g_dl -= dtheta * d * (rho * rho + rho * R + R * R) / ((rho + R) * rho3) * dir;
+      } else {
+        const auto [t_sl, t_dl] = yukawa_tails(kappa, abs_d, R, rho);
+        g_sl -= dtheta * t_sl * dir;
+        g_dl_normal += dtheta * std::exp(-kappa * rho) * (kappa * d * d / (rho * rho) - R * R / rho3);
+        if (d != 0.0) g_dl -= dtheta * (std::copysign(1.0, d) / abs_d) * t_dl * dir;
+      }
+    };
+    auto first_width = [&](double vs) {
+      if constexpr (!yukawa) {
+        return max_piece_width;
+      } else {
+        const double ch = std::cosh(vs);
+        const double rho_s = length2d(p * ch, d);
+        const double a1 = kappa * p * p * std::abs(std::sinh(vs)) * ch / rho_s;
+        const double a2 = kappa * p * p * std::cosh(2.0 * vs) / rho_s;
+        return 1.0 / (a1 + std::sqrt(a2));
+      }
+    };
+    auto negligible = [&](double vs) {
+      if (!split) return false;
+      const double R = p * std::cosh(vs);
+      const double delta = (R * R - q2) / (length2d(R, d) + c);
+      return kappa * delta > negligible_exponent;
+    };
+    const double v1 = std::asinh(E.t1 / p), v2 = std::asinh(E.t2 / p);
+    thread_local GradedNodes graded;
+    graded.clear();
+    if (v1 < 0.0 && v2 > 0.0) {
+      graded.append(0.0, v2, first_width(0.0), negligible);
+      graded.append(0.0, v1, first_width(0.0), negligible);
+    } else if (v1 >= 0.0) {
+      graded.append(v1, v2, first_width(v1), negligible);
+    } else {
+      graded.append(v2, v1, first_width(v2), negligible);
+    }
+    if (with_gradients)
+      for (size_t i = 0; i < graded.nodes.size(); ++i)
+        visit_gradients(graded.nodes[i], graded.weights[i]);
+    // The values, over arrays of nodes, so that the exponentials, square roots and divisions
+    // use the SIMD width.
+    constexpr Eigen::Index chunk = 128;
+    using Chunk = Eigen::Array<double, Eigen::Dynamic, 1, 0, chunk, 1>;
+    const auto count = static_cast<Eigen::Index>(graded.nodes.size());
+    for (Eigen::Index begin = 0; begin < count; begin += chunk) {
+      const Eigen::Index m = std::min(chunk, count - begin);
+      const Eigen::Map<const Eigen::ArrayXd> v(graded.nodes.data() + begin, m);
+      const Eigen::Map<const Eigen::ArrayXd> w(graded.weights.data() + begin, m);
+      const Chunk ev = linalg::vector_exp<Chunk>(v);
+      const Chunk ch = 0.5 * (ev + ev.inverse());  // cosh v
+      const Chunk R = p * ch;
+      const Chunk rho = (R.square() + d * d).sqrt();
+      const Chunk dtheta = (E.sigma * w) / ch;
+      // δ = ρ' − c without cancellation (ρ'² − c² = R² − q²).
+      const Chunk delta = (R.square() - q2) / (rho + c);
+      if constexpr (!yukawa) {
+        sl += (dtheta * delta).sum();
+        dl += d_over_c * (dtheta * delta / rho).sum();
+      } else if (split) {
+        const Chunk e = exp_c * linalg::vector_exp<Chunk>(-kappa * delta);
+        sl -= (dtheta * e).sum() / kappa;
+        dl -= d * (dtheta * e / rho).sum();
+      } else {
+        const Chunk em = -(-kappa * delta).expm1();
+        // Held as an array before the sum: with AVX2 (no AVX-512), GCC 12 warns that the fused
+        // reduction of dtheta * em may read em uninitialized; the values are the same.
+        const Chunk weighted = dtheta * em;
+        sl += exp_c / kappa * weighted.sum();
+        dl += d_over_c * exp_c * (dtheta * (delta + c * em) / rho).sum();
+      }
+    }
+  }
+  if constexpr (yukawa) {
+    if (split) {
+      sl += exp_c * theta / kappa;
+      dl += d_over_c * exp_c * theta;
+    }
+    g_dl_normal -= kappa * std::exp(-kappa * abs_d) * theta;
+  }
+  if (with_gradients && edge_skipped && d != 0.0) {
+    // The dropped constants: −log|d| (Laplace SL), 1/d (Laplace DL), the full radial
+    // integrals I∞ = T(R = 0) (Yukawa SL and DL).
+    if constexpr (!yukawa) {
+      g_sl -= std::log(abs_d) * swept_direction;
+      g_dl += swept_direction / d;
+    } else {
+      const auto [i_sl, i_dl] = yukawa_tails(kappa, abs_d, 0.0, abs_d);
+      g_sl += i_sl * swept_direction;
+      g_dl += (std::copysign(1.0, d) / abs_d) * i_dl * swept_direction;
+    }
+  }
+
+  constexpr double inv_four_pi = 0.25 * std::numbers::inv_pi;
+  PanelIntegrals result;
+  result.single_layer = inv_four_pi * sl;
+  result.double_layer = inv_four_pi * dl;
+  if (with_gradients) {
+    const Eigen::Vector3d sl_plane = g_sl.x() * panel.tangent1 + g_sl.y() * panel.tangent2;
+    const Eigen::Vector3d dl_plane = g_dl.x() * panel.tangent1 + g_dl.y() * panel.tangent2;
+    // n·∇_x single layer = ∫ G'(r) d/r dA = −double layer.
+    result.single_layer_gradient = inv_four_pi * sl_plane - result.double_layer * panel.normal;
+    result.double_layer_gradient = inv_four_pi * (dl_plane + g_dl_normal * panel.normal);
+  }
+  return result;
+}
+
+template PanelIntegrals polar_panel_integrals<LaplaceKernel>(const LaplaceKernel&, const Panel&,
+                                                             const Eigen::Vector3d&, bool);
+template PanelIntegrals polar_panel_integrals<YukawaKernel>(const YukawaKernel&, const Panel&,
+                                                            const Eigen::Vector3d&, bool);
+
+}  // namespace bemshape::bem

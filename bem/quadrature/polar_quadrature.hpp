@@ -1,0 +1,48 @@
+#pragma once
+// Near-field and singular panel integrals by polar coordinates in the panel's plane
+// (docs/quadrature.md derives every formula below).
+//
+// Let x be the target, d = (x − a)·n its signed height above the plane of the panel T, x' its
+// projection, ρ the in-plane distance from x', ρ' = √(ρ² + d²) = |x − y|. T is the signed sum
+// of the three triangles (x', P_i, P_{i+1}) over its edges; with polar angle θ around x' and
+// R(θ) the distance from x' to the edge along θ,
+//
+//   ∫_T f(|x − y|) dA = Σ_edges ∫ dθ ∫_0^{R(θ)} f(√(ρ² + d²)) ρ dρ      (θ signed).
+//
+// The radial integrals of the value kernels are exact (per unit density, times 1/4π):
+//   single layer Laplace   ρ' − |d|
+//   single layer Yukawa    (e^{−κ|d|} − e^{−κρ'})/κ
+//   double layer Laplace   sign(d) − d/ρ'
+//   double layer Yukawa    sign(d)e^{−κ|d|} − d e^{−κρ'}/ρ'
+// (with ∂G/∂n_y = G'(r)(y − x)·n/r = −d G'(r)/r, so the double layer is positive above the
+// panel). Along each edge the angle is parametrised by t = p sinh v, p the distance from x' to
+// the edge's line and t the abscissa from the foot of the perpendicular, dθ = dv / cosh v;
+// composite Gauss–Legendre in v on pieces graded from the point of the edge nearest to x
+// resolves both the near-singular geometry (p → 0) and the e^{−κρ'} boundary layer.
+//
+// Gradients: n·∇ single layer = −double layer; the normal part of ∇ double layer and the
+// Laplace in-plane parts are closed forms; the Yukawa in-plane parts use the radial tails
+// ∫_R^∞ in the variable ρ = |d| sinh u, Gauss–Legendre in u.
+//
+// Targets in the plane (|d| ≤ 1e−12·diameter, treated as d = 0, so that collocation points
+// computed on the panel get the principal value whatever the rounding): values are exact limits (the double layer is 0, the principal
+// value on the panel). Gradients for d = 0 and x' inside T are the average of the two one-sided
+// limits: the single-layer normal derivative is 0 there; the in-plane parts are the common
+// limit. Targets on an edge line with d = 0 are singular and not supported (the result is finite
+// but meaningless).
+
+#include <Eigen/Core>
+
+#include "bem/quadrature/panel.hpp"
+#include "bem/quadrature/panel_integral_values.hpp"
+
+namespace bemshape::bem {
+
+/// Panel integrals by the polar scheme, valid for every target (used for targets near or on
+/// the panel: cost ~ 100–300 kernel evaluations, more for gradients).
+/// Kernel ∈ {LaplaceKernel, YukawaKernel} (explicitly instantiated).
+template <class Kernel>
+PanelIntegrals polar_panel_integrals(const Kernel& kernel, const Panel& panel,
+                                     const Eigen::Vector3d& x, bool with_gradients);
+
+}  // namespace bemshape::bem

@@ -1,0 +1,416 @@
+#include "bem/solve/hmatrix_transmission_solver.hpp"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <type_traits>
+
+#include "bem/operators/galerkin_block_generator.hpp"
+#include "linalg/gmres.hpp"
+#include "bem/hmatrix/hierarchical_matrix.hpp"
+#include "bem/hmatrix/nested_far_field.hpp"
+#include "bem/solve/yukawa_near_field.hpp"
+#include "bem/kernels/laplace_kernel.hpp"
+#include "bem/quadrature/panel.hpp"
+#include "core/cancellation.hpp"
+#include "core/errors.hpp"
+#include "core/memory.hpp"
+
+namespace bemshape::bem {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+/// Typical rank of an admissible Laplace block at ε = 1e−8 (measured: 6–20), used only by
+/// the memory estimate.
+constexpr double kTypicalRank = 16.0;
+
+/// With the far field nested (H²), for the memory estimate only. Measured on spheres of
+/// 100820, 200000 and 397620 faces at the defaults (docs/benchmarks.md, sixteenth session):
+/// 4.2 kB per face of the small blocks' narrow factors, 1.8 kB of bases and 0.6 kB of
+/// couplings, each nearly flat in N. Bytes per face and level of the small blocks' factors
+/// (the 3 levels from leaves of 32 to clusters of 256):
+constexpr double kSmallBlockBytes = 1400.0;
+/// The bases' rank in the estimate's 3·4·k bytes per face (a row and two column rows per
+/// panel, 4 bytes an entry; 1.8 kB per face, the transfer matrices' share included):
+constexpr double kTypicalNestedRank = 150.0;
+/// The couplings' bytes per face and level above nested_min_cluster (0.6 kB per face over
+/// the 8.6–10.6 levels of those spheres; per level, so that deeper trees are not undercounted):
+constexpr double kNestedCouplingBytes = 70.0;
+/// The shortest restart length the memory guard may choose, below a user's longer one: above
+/// the 13–22 iterations the fast path takes up to 10⁶ faces (docs/benchmarks.md).
+constexpr int kMinRestart = 30;
+
+using RowMajorRows = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+/// Y·x for the exterior matrix in double or single precision (entries promoted to double),
+/// x (2n × k) row-major so that each pair of row i reads the rows j (φ) and n + j (q) of x
+/// once for all k vectors.
+template <class Scalar>
+RowMajorRows sparse_rows_product(const YukawaNearField<Scalar>& y, const RowMajorRows& x) {
+  const Eigen::Index k = x.cols(), n = y.rows();
+  RowMajorRows out = RowMajorRows::Zero(n, k);
+  const Scalar* const minus_k = y.minus_double_layer();
+  const Scalar* const v = y.single_layer();
+#pragma omp parallel for schedule(static, 256)
+  for (Eigen::Index i = 0; i < n; ++i) {
+    double* const sums = out.data() + i * k;
+    Eigen::Index s = y.row_begin(i);
+    // A run's columns are consecutive: its rows of x are read as one contiguous stretch.
+    // Three vectors (the three directions, the solver's case) are summed in registers.
+    const auto add_row = [&](auto vectors) {
+      constexpr int kv = decltype(vectors)::value;
+      double acc[kv > 0 ? kv : 1] = {};
+      for (Eigen::Index r = y.run_begin(i); r < y.run_end(i); ++r) {
+        const double* phi = x.data() + y.run_column(r) * k;
+        for (Eigen::Index t = 0; t < y.run_length(r); ++t, ++s, phi += k) {
+          const double a = double(minus_k[s]), b = double(v[s]);
+          const double* const q = phi + n * k;
+          if constexpr (kv > 0) {
+            for (int c = 0; c < kv; ++c) acc[c] += a * phi[c] + b * q[c];
+          } else {
+            for (Eigen::Index c = 0; c < k; ++c) sums[c] += a * phi[c] + b * q[c];
+          }
+        }
+      }
+      if constexpr (kv > 0)
+        for (int c = 0; c < kv; ++c) sums[c] = acc[c];
+    };
+    if (k == 3)
+      add_row(std::integral_constant<int, 3>{});
+    else
+      add_row(std::integral_constant<int, 0>{});
+  }
+  return out;
+}
+
+}  // namespace
+
+std::uint64_t hmatrix_solver_memory_estimate(Eigen::Index faces, std::uint64_t exterior_pairs,
+                                             std::uint64_t exterior_runs,
+                                             const HMatrixSolverOptions& options,
+                                             HMatrixSolverOptions::FarField far_field) {
+  if (far_field == HMatrixSolverOptions::FarField::automatic)
+    far_field = options.far_field == HMatrixSolverOptions::FarField::nested
+                    ? HMatrixSolverOptions::FarField::nested
+                    : HMatrixSolverOptions::FarField::hmatrix;
+  const double n = double(faces);
+  // Near field: each leaf meets O(1) leaves densely (measured on a sphere: 30 at η = 1, 20
+  // at η = 2, 16 at η = 4, ≈ 30·η^−0.45) → 2 · that · leaf entries per row; low rank:
+  // ≈ log2(N/leaf) levels × a few blocks × 3·rank per row. Near-field entries take 4 or 8
+  // bytes; factor entries 8 in double precision, 2.5 on average in single precision with
+  // the fixed-point columns (measured: 2.27 on a 100820-face sphere, 2.49 on a remeshed
+  // 121480-face box; AdaptivePrecisionFactors).
+  const double leaf = double(options.leaf_size);
+  const double levels = std::max(1.0, std::log2(std::max(n / leaf, 1.0)));
+  const double near_leaves = 30.0 * std::pow(std::max(options.eta, 1.0), -0.45);
+  const double entry_bytes = options.single_precision ? 4.0 : 8.0;
+  const double factor_bytes = options.single_precision ? 2.5 : 8.0;
+  double far = factor_bytes * levels * 6.0 * 3.0 * kTypicalRank;
+  if (far_field == HMatrixSolverOptions::FarField::nested) {
+    // The blocks below nested_min_cluster as factors, on the levels from the leaves to it;
+    // the H² part: bases of rank ≈ kTypicalNestedRank on both sides (1 + 2 rows per panel, 4
+    // bytes each) and couplings on the levels above (measured per level and face:
+    // kNestedCouplingBytes).
+    const double small_levels =
+        std::clamp(std::log2(double(options.nested_min_cluster) / leaf), 0.0, levels);
+    far = kSmallBlockBytes * small_levels +
+          (levels > small_levels
+               ? 3.0 * 4.0 * kTypicalNestedRank + kNestedCouplingBytes * (levels - small_levels)
+               : 0.0);
+  }
+  const double laplace = n * (entry_bytes * 2.0 * near_leaves * leaf + far);
+  // Yukawa: written in place, its values in the factors' precision.
+  const double yukawa =
+      double(options.single_precision
+                 ? YukawaNearField<float>::bytes_for(exterior_pairs, exterior_runs, faces)
+                 : YukawaNearField<double>::bytes_for(exterior_pairs, exterior_runs, faces));
+  const double preconditioner =
+      double(ClusterBlockPreconditioner::bytes_for(faces, options.preconditioner_block));
+  // The coarse space: A_c and its LU for at most kMaxClusters clusters, both held while the
+  // LU is computed (only the LU is kept; A E's factors are small beside the preconditioner's).
+  const double clusters = options.coarse_cluster > 0
+                              ? std::min(double(ClusterCoarseSpace::kMaxClusters),
+                                         n / (0.5 * double(options.coarse_cluster)))
+                              : 0.0;
+  const double coarse = 16.0 * 4.0 * clusters * clusters;
+  // Three Krylov bases (one per direction, solved in lockstep) and their work vectors.
+  const double krylov = 3.0 * 8.0 * 2.0 * n * (options.restart + 6.0);
+  return static_cast<std::uint64_t>(laplace + yukawa + preconditioner + coarse + krylov);
+}
+
+BoundarySolution solve_transmission_hmatrix(const geometry::SurfaceMesh& mesh,
+                                            const TransmissionParameters& parameters,
+                                            const HMatrixSolverOptions& options,
+                                            const ProgressCallback& progress) {
+  const Eigen::Index n = mesh.num_faces();
+  if (n == 0) throw InputError("the mesh has no faces");
+  const auto start = Clock::now();
+  const std::vector<Panel> panels = make_panels(mesh);
+  const ClusterTree tree(panels, options.leaf_size);
+  const auto& perm = tree.permutation();
+  // Exterior pairs whose centroids are farther apart than 18.4/κ (−ln ε/κ at the default
+  // ε = 1e−8) are dropped: about ε of each row's sum, the relative accuracy the compression
+  // of the Laplace part works to (bem/solve/yukawa_near_field.hpp). The dense path
+  // keeps more (entries down to 1e−10 of an unattenuated one); on the benchmarks' sphere and
+  // thin-walled box the two agree to the digits docs/benchmarks.md lists. Their exact count,
+  // before anything is assembled, goes into the memory guard: it varies with κ·h and with
+  // the walls' thickness far more than the Laplace part does.
+  const double negligible = options.aca_tolerance;
+  const auto count_start = Clock::now();
+  const YukawaNearFieldRows exterior_rows =
+      yukawa_near_field_rows(panels, tree, parameters.kappa, negligible);
+  const double count_seconds = seconds_since(count_start);
+  using FarField = HMatrixSolverOptions::FarField;
+  const auto estimate = [&](const HMatrixSolverOptions& o, FarField far_field) {
+    return hmatrix_solver_memory_estimate(n, std::uint64_t(exterior_rows.pairs.sum()),
+                                          std::uint64_t(exterior_rows.runs.sum()), o, far_field);
+  };
+  const std::uint64_t budget = memory_budget_bytes(options.max_memory_bytes);
+  FarField far_field = options.far_field;
+  if (far_field == FarField::automatic) {
+    const std::uint64_t factored = estimate(options, FarField::hmatrix);
+    // Below a few levels of large clusters the H² form saves nothing (the estimate knows);
+    // its bases and couplings are in single precision, which a tolerance below 1e−6 rules
+    // out (single_precision off).
+    far_field = budget == 0 || factored <= budget || !options.single_precision ||
+                        factored <= estimate(options, FarField::nested)
+                    ? FarField::hmatrix
+                    : FarField::nested;
+  }
+  if (far_field == FarField::nested && !options.single_precision) {
+    throw InputError(
+        "the far field in the H² form (--far-field nested) is stored in single precision, "
+        "which perturbs a product by about 1e-7: use --tolerance 1e-6 or larger with it, or "
+        "--far-field hmatrix");
+  }
+  // The Krylov bases take 48·N bytes per step of the restart length. Where the whole does
+  // not fit, a shorter restart is taken, down to kMinRestart: GMRES(m) is full GMRES for its
+  // first m iterations, and the solver needs 13–22 (docs/benchmarks.md).
+  HMatrixSolverOptions fitted = options;
+  while (budget > 0 && fitted.restart > kMinRestart && estimate(fitted, far_field) > budget)
+    fitted.restart = std::max(kMinRestart, fitted.restart - 10);
+  require_memory(estimate(fitted, far_field),
+                 "the hierarchical-matrix BEM system of " + std::to_string(n) + " faces",
+                 "use a coarser mesh (larger --max-edge)", options.max_memory_bytes);
+
+  report_progress(progress, "assemble", 0.0);
+  const auto interior_start = Clock::now();
+  // The blocks of the H² part: between clusters of at least nested_min_cluster panels, and
+  // not inside one preconditioner block (the preconditioner reads its blocks from the
+  // H-matrix, HierarchicalMatrix::diagonal_blocks).
+  BlockPartition partition = partition_blocks(tree, options.eta);
+  std::vector<BlockIndex> nested_blocks;
+  if (far_field == FarField::nested) {
+    std::vector<int> range(tree.clusters().size(), -1);
+    const std::vector<int> ranges = tree.clusters_up_to(options.preconditioner_block);
+    for (std::size_t r = 0; r < ranges.size(); ++r) {
+      std::vector<int> stack{ranges[r]};
+      while (!stack.empty()) {
+        const int c = stack.back();
+        stack.pop_back();
+        range[std::size_t(c)] = int(r);
+        if (!tree.cluster(c).is_leaf())
+          stack.insert(stack.end(), {tree.cluster(c).first_child, tree.cluster(c).first_child + 1});
+      }
+    }
+    std::vector<BlockIndex> factored;
+    for (const BlockIndex& b : partition.admissible) {
+      const bool large = std::min(tree.cluster(b.rows).size(), tree.cluster(b.cols).size()) >=
+                         options.nested_min_cluster;
+      const bool in_one_block = range[std::size_t(b.rows)] >= 0 &&
+                                range[std::size_t(b.rows)] == range[std::size_t(b.cols)];
+      (large && !in_one_block ? nested_blocks : factored).push_back(b);
+    }
+    partition.admissible = std::move(factored);
+  }
+  // The generator (tree-ordered panels, their arrays, the touching pairs' table: about
+  // 0.65 kB per panel) is released as soon as the blocks are built. The H² part comes first:
+  // the memory its construction holds for a while is then reused by what follows.
+  std::optional<NestedFarField> far;
+  double far_seconds = 0.0;
+  const HierarchicalMatrix laplace = [&] {
+    const GalerkinBlockGenerator<LaplaceKernel> generator(LaplaceKernel{}, panels,
+                                                          tree.permutation());
+    if (!nested_blocks.empty()) {
+      const auto far_start = Clock::now();
+      NestedFarFieldOptions far_options;
+      far_options.aca_tolerance = options.aca_tolerance;
+      far.emplace(tree, nested_blocks, generator, far_options, progress);
+      partition.dense.insert(partition.dense.end(), far->uncompressed().begin(),
+                             far->uncompressed().end());
+      far_seconds = seconds_since(far_start);
+    }
+    return HierarchicalMatrix(
+        tree, tree, partition, generator,
+        {options.aca_tolerance, options.eta, options.single_precision, options.single_precision},
+        progress);
+  }();
+  const double interior_seconds = seconds_since(interior_start);
+  report_progress(progress, "assemble exterior", 0.0);
+  const auto exterior_start = Clock::now();
+  // In single precision with the factors (12 bytes per pair instead of 20); one of the two
+  // is assembled, and with_exterior hands it to the code that reads it.
+  const YukawaNearField<double> yukawa_double =
+      options.single_precision ? YukawaNearField<double>()
+                               : assemble_yukawa_near_field<double>(panels, tree, parameters.kappa,
+                                                                    negligible, progress, &exterior_rows);
+  const YukawaNearField<float> yukawa_single =
+      options.single_precision ? assemble_yukawa_near_field<float>(panels, tree, parameters.kappa,
+                                                                   negligible, progress, &exterior_rows)
+                               : YukawaNearField<float>();
+  const auto with_exterior = [&](const auto& use) {
+    return options.single_precision ? use(yukawa_single) : use(yukawa_double);
+  };
+  const double exterior_seconds = count_seconds + seconds_since(exterior_start);
+  Eigen::VectorXd half_mass(n);
+  for (Eigen::Index p = 0; p < n; ++p) half_mass(p) = 0.5 * mesh.face_areas()(perm[size_t(p)]);
+  report_progress(progress, "preconditioner", 0.0);
+  const ClusterBlockPreconditioner preconditioner = with_exterior([&](const auto& yukawa) {
+    return ClusterBlockPreconditioner(tree, laplace, yukawa, half_mass, options.preconditioner_block);
+  });
+  std::optional<ClusterCoarseSpace> coarse;
+  if (options.coarse_cluster > 0)
+    with_exterior([&](const auto& yukawa) {
+      coarse.emplace(tree, laplace, yukawa, half_mass, options.coarse_cluster,
+                     HierarchicalMatrix::GroupedColumns::Storage::fixed8, far ? &*far : nullptr);
+    });
+
+  BoundarySolution solution;
+  solution.parameters = parameters;
+  solution.report.method = far ? "hmatrix-h2-gmres" : "hmatrix-gmres";
+  solution.report.unknowns = 2 * n;
+  solution.report.restart = fitted.restart;
+  solution.report.assembly_seconds = seconds_since(start);
+  // The interior H-matrix's wall time split between its dense (near-field) and low-rank
+  // (far-field) blocks in proportion to the thread time each kind took.
+  const HierarchicalMatrixStats& hstats = laplace.stats();
+  const double block_seconds = hstats.dense_seconds + hstats.low_rank_seconds;
+  const double near_share = block_seconds > 0.0 ? hstats.dense_seconds / block_seconds : 0.0;
+  const double hmatrix_seconds = interior_seconds - far_seconds;
+  solution.report.assembly_stages = {
+      {"interior near field", near_share * hmatrix_seconds},
+      {"interior far field", (1.0 - near_share) * hmatrix_seconds + far_seconds},
+      {"exterior near field", exterior_seconds},
+      {"preconditioner", solution.report.assembly_seconds - interior_seconds - exterior_seconds}};
+  solution.report.operator_parts = {
+      {"interior near field", hstats.dense_bytes},
+      {"interior far field", hstats.low_rank_bytes + (far ? far->stats().bytes : 0)},
+      {"exterior near field", with_exterior([](const auto& yukawa) { return yukawa.bytes(); })},
+      {"preconditioner", preconditioner.bytes() + (coarse ? coarse->bytes() : 0)}};
+  for (const auto& [part, bytes] : solution.report.operator_parts)
+    solution.report.operator_bytes += bytes;
+  // Stored over dense entries of the Laplace row, the H² part's bases and couplings included.
+  solution.report.compression =
+      hstats.full_entries > 0
+          ? double(hstats.dense_entries + hstats.low_rank_entries +
+                   (far ? far->stats().leaf_basis_entries + far->stats().transfer_entries +
+                              far->stats().coupling_entries
+                        : 0)) /
+                double(hstats.full_entries)
+          : 0.0;
+
+  // The three directions share the operator: their GMRES run in lockstep (gmres_columns),
+  // so each step reads the H-matrix, the sparse exterior matrix and the preconditioner's
+  // factors once for all three vectors. x, y: 2n × k, one column per direction.
+  using RowMajorMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  double interior_product_seconds = 0.0, exterior_product_seconds = 0.0,
+         preconditioner_seconds = 0.0;
+  const auto system = [&](const Eigen::MatrixXd& x, Eigen::MatrixXd& y) {
+    const auto interior_start = Clock::now();
+    const Eigen::Index k = x.cols();
+    y.resize(2 * n, k);
+    Eigen::MatrixXd densities(n, 2 * k);  // column 2j: φ of vector j, 2j + 1: its q
+    for (Eigen::Index j = 0; j < k; ++j) {
+      densities.col(2 * j) = x.col(j).head(n);
+      densities.col(2 * j + 1) = x.col(j).tail(n);
+    }
+    y.topRows(n).noalias() = -(half_mass.asDiagonal() * x.topRows(n));
+    laplace.multiply_add(densities, y.topRows(n));
+    if (far)
+      far->multiply_add(densities, y.topRows(n));
+    const auto exterior_start = Clock::now();
+    interior_product_seconds += seconds_since(interior_start);
+    // A row-major right-hand side lets the sparse product read each row once for all k.
+    const RowMajorMatrix x_rows = x;
+    const RowMajorMatrix exterior =
+        with_exterior([&](const auto& yukawa) { return sparse_rows_product(yukawa, x_rows); });
+    y.bottomRows(n) = half_mass.asDiagonal() * x.topRows(n) + exterior;
+    exterior_product_seconds += seconds_since(exterior_start);
+  };
+  const auto precondition = [&](const Eigen::MatrixXd& r, Eigen::MatrixXd& z) {
+    const auto start = Clock::now();
+    if (coarse)
+      coarse->apply_two_level(preconditioner, r, z);
+    else
+      preconditioner.apply(r, z);
+    preconditioner_seconds += seconds_since(start);
+  };
+
+  const auto solve_start = Clock::now();
+  linalg::GmresOptions gmres_options;
+  gmres_options.tolerance = options.tolerance;
+  gmres_options.restart = fitted.restart;
+  gmres_options.max_iterations = options.max_iterations;
+  gmres_options.side = options.preconditioner_side;
+  // b = (0, Vκ g) per direction i: the single-layer half of Y applied to g = n_i/ã.
+  RowMajorMatrix g = RowMajorMatrix::Zero(2 * n, 3);
+  for (Eigen::Index p = 0; p < n; ++p)
+    g.row(n + p) = mesh.face_normals().row(perm[size_t(p)]) / parameters.a_tilde;
+  Eigen::MatrixXd b = Eigen::MatrixXd::Zero(2 * n, 3);
+  b.bottomRows(n) = with_exterior([&](const auto& yukawa) { return sparse_rows_product(yukawa, g); });
+  Eigen::MatrixXd x = Eigen::MatrixXd::Zero(2 * n, 3);
+  std::array<int, 3> reached{0, 0, 0};
+  const std::vector<linalg::GmresResult> results = linalg::gmres_columns(
+      system, precondition, b, x, gmres_options, [&](int direction, int iteration, double) {
+        throw_if_cancelled();  // called between GMRES steps, outside parallel regions
+        reached[size_t(direction)] = iteration;
+        double done = 0.0;
+        for (const int r : reached) done += std::min(1.0, r / 30.0) / 3.0;
+        report_progress(progress, "solve", done);
+      });
+  solution.phi.resize(n, 3);
+  solution.q.resize(n, 3);
+  for (int i = 0; i < 3; ++i) {
+    const linalg::GmresResult& result = results[size_t(i)];
+    solution.report.iterations = std::max(solution.report.iterations, result.iterations);
+    solution.report.residual = std::max(solution.report.residual, result.residual);
+    solution.report.preconditioned_residual =
+        std::max(solution.report.preconditioned_residual, result.preconditioned_residual);
+    if (!result.converged || !x.col(i).allFinite()) {
+      std::ostringstream msg;
+      msg << "hierarchical-matrix BEM solve (direction " << i + 1 << "): GMRES reached relative "
+          << (options.preconditioner_side == linalg::PreconditionerSide::left ? "preconditioned " : "")
+          << "residual " << result.preconditioned_residual << " after " << result.iterations
+          << " iterations, tolerance " << options.tolerance;
+      if (fitted.restart < options.restart)
+        msg << " (GMRES restarted every " << fitted.restart << " steps instead of "
+            << options.restart << " to fit in memory)";
+      msg << "; check the mesh for badly shaped faces or use --solver dense on a coarser mesh";
+      throw NumericalError(msg.str());
+    }
+    for (Eigen::Index p = 0; p < n; ++p) {
+      solution.phi(perm[size_t(p)], i) = x(p, i);
+      solution.q(perm[size_t(p)], i) = x(n + p, i);
+    }
+  }
+  report_progress(progress, "solve", 1.0);
+  solution.report.solve_seconds = seconds_since(solve_start);
+  solution.report.solve_stages = {
+      {"interior product", interior_product_seconds},
+      {"exterior product", exterior_product_seconds},
+      {"preconditioner", preconditioner_seconds},
+      {"Krylov and the rest", solution.report.solve_seconds - interior_product_seconds -
+                     exterior_product_seconds - preconditioner_seconds}};
+  return solution;
+}
+
+}  // namespace bemshape::bem

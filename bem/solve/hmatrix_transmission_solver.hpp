@@ -1,0 +1,109 @@
+#pragma once
+// Fast solver of the shape-feature transmission problem: the same P0 Galerkin system as the
+// dense reference (bem/solve/dense_transmission_solver.hpp),
+//
+//   [ −½M − K0    V0 ] [φ]   [ 0    ]
+//   [  ½M − Kκ    Vκ ] [q] = [ Vκ g ],   g = n_i/ã,
+//
+// with the Laplace block row [−K0 | V0] as a hierarchical matrix compressed by adaptive
+// cross approximation (bem/hmatrix/hierarchical_matrix.hpp; on large meshes its far
+// field between large clusters in the H² form, bem/hmatrix/nested_far_field.hpp,
+// HMatrixSolverOptions::far_field), the Yukawa block row as a
+// sparse near-field matrix (bem/solve/yukawa_near_field.hpp; the exponential decay
+// makes it exactly as sparse as the dense path's own dropping rule), and restarted GMRES
+// (linalg/gmres.hpp) with a two-level preconditioner: a coarse space of
+// cluster-wise constant densities (bem/solve/cluster_coarse_space.hpp), then LU of
+// the system restricted to clusters (bem/solve/cluster_block_preconditioner.hpp).
+// Storage and work are O(N log N). docs/benchmarks.md holds the measured times, memory and
+// iteration counts.
+
+#include <cstdint>
+
+#include "bem/solve/boundary_solution.hpp"
+#include "bem/hmatrix/block_partition.hpp"
+#include "bem/solve/cluster_block_preconditioner.hpp"
+#include "bem/solve/cluster_coarse_space.hpp"
+#include "bem/hmatrix/cluster_tree.hpp"
+#include "linalg/gmres.hpp"
+#include "core/progress.hpp"
+#include "geometry/surface_mesh.hpp"
+
+namespace bemshape::bem {
+
+struct HMatrixSolverOptions {
+  /// Relative residual GMRES must reach (`--tolerance`), preconditioned on the side
+  /// `preconditioner_side` names: by default ‖M⁻¹(b − A x)‖/‖M⁻¹b‖, which tracks the
+  /// relative error of the densities φ and q (see preconditioner_side).
+  double tolerance = 1e-6;
+  /// ε of the cross approximation: two digits below the GMRES tolerance, so compression
+  /// errors stay below what the solve leaves.
+  double aca_tolerance = 1e-8;
+  /// η of the admissibility condition.
+  double eta = kDefaultAdmissibility;
+  /// The interior H-matrix in single precision, low-rank factors and dense near-field blocks
+  /// (HierarchicalMatrixOptions), the factors' columns of small singular value in 16- or
+  /// 8-bit fixed point within the same rounding bound (AdaptivePrecisionFactors), and the
+  /// exterior values in single precision: under half the memory. Rounding the factors
+  /// perturbs a product by about 4e−7 relative, the near field by less (measured,
+  /// tests/bem/hmatrix), which leaves the solution unchanged at the default tolerance
+  /// of 1e−6 (docs/benchmarks.md) but would dominate a tighter one: turn it off below 1e−6
+  /// (apps/boundary_solve does).
+  bool single_precision = true;
+  /// Panels per leaf of the cluster tree.
+  Eigen::Index leaf_size = ClusterTree::kDefaultLeafSize;
+  /// Panels per preconditioner block.
+  Eigen::Index preconditioner_block = ClusterBlockPreconditioner::kDefaultBlockSize;
+  /// Panels per cluster of the coarse space (bem/solve/cluster_coarse_space.hpp);
+  /// 0 = the blocks alone (block Jacobi: more iterations, growing with N).
+  Eigen::Index coarse_cluster = ClusterCoarseSpace::kDefaultClusterSize;
+  /// GMRES restart length. Where the Krylov bases would not fit in the memory allowed, the
+  /// solver takes a shorter one, in steps of 10 down to 30, and reports it
+  /// (SolveReport::restart).
+  int restart = 60;
+  int max_iterations = 600;
+  /// The preconditioner's side in GMRES (linalg/gmres.hpp), which sets what
+  /// `tolerance` bounds. Left: the preconditioned residual, an estimate of the densities'
+  /// relative error because the two-level preconditioner is close to A⁻¹. Right: the
+  /// residual of the equations, which lets q's error grow with the condition number of the
+  /// first-kind single layer (about 30 × the residual on a 5120-face ball, 1.2e−5 against the
+  /// dense path at 1e−6 on 2000 faces, against 1.0e−6 preconditioned on the left; the
+  /// left side takes 14 iterations there instead of 11; docs/benchmarks.md).
+  linalg::PreconditionerSide preconditioner_side = linalg::PreconditionerSide::left;
+  /// How the Laplace row's far field is kept. `hmatrix`: every admissible block as its own
+  /// factors. `nested`: the blocks between clusters of at least `nested_min_cluster` panels
+  /// in the H² form (bem/hmatrix/nested_far_field.hpp: bases shared by a cluster's
+  /// blocks, built from the kernel without holding those blocks' factors), the smaller
+  /// ones as factors; less memory, a second cross approximation of the large blocks (time).
+  /// `automatic`: `nested` where the H-matrix would not fit in the memory allowed.
+  enum class FarField { automatic, hmatrix, nested };
+  FarField far_field = FarField::automatic;
+  /// Smallest cluster of a block kept in the H² form [panels]. Below, a block's own
+  /// narrow-format factors take fewer bytes than its coupling between shared bases
+  /// (measured on a 100820-face sphere, docs/benchmarks.md: 128, 256 and 512 panels give
+  /// 704, 686 and 713 MB of far field against the H-matrix's 1001 MB).
+  Eigen::Index nested_min_cluster = 256;
+  /// Upper bound on the memory the solver may use [bytes]; 0 = what the machine has.
+  std::uint64_t max_memory_bytes = 0;
+};
+
+/// Bytes the fast path is expected to hold for `faces` faces (the guard's estimate: near
+/// field and low-rank factors at a typical rank, the exterior matrix of `exterior_pairs`
+/// panel pairs in `exterior_runs` runs (yukawa_near_field_rows counts them),
+/// preconditioner, Krylov bases of options.restart steps), with the far field kept as
+/// `far_field`: hmatrix, nested, or automatic for options.far_field (its own automatic taken
+/// as hmatrix).
+std::uint64_t hmatrix_solver_memory_estimate(
+    Eigen::Index faces, std::uint64_t exterior_pairs, std::uint64_t exterior_runs,
+    const HMatrixSolverOptions& options,
+    HMatrixSolverOptions::FarField far_field = HMatrixSolverOptions::FarField::automatic);
+
+/// Solves for s_1, s_2, s_3 on a closed, outward-oriented mesh. Throws ResourceError if the
+/// estimate does not fit and NumericalError if GMRES does not reach the tolerance or the
+/// solution is not finite. The report's `iterations` is the largest count of the three
+/// directions.
+BoundarySolution solve_transmission_hmatrix(const geometry::SurfaceMesh& mesh,
+                                            const TransmissionParameters& parameters,
+                                            const HMatrixSolverOptions& options = {},
+                                            const ProgressCallback& progress = {});
+
+}  // namespace bemshape::bem

@@ -1,0 +1,182 @@
+#include "bem/solve/yukawa_near_field.hpp"
+
+#include <atomic>
+#include <cstdint>
+#include <limits>
+#include <new>
+#include <string>
+#include <cmath>
+#include <vector>
+
+#include "bem/operators/galerkin_operators.hpp"
+#include "bem/kernels/yukawa_kernel.hpp"
+#include "core/assert.hpp"
+#include "core/errors.hpp"
+#include "core/cancellation.hpp"
+#include "core/memory.hpp"
+
+namespace bemshape::bem {
+
+double yukawa_cutoff_distance(double kappa, double negligible) { return -std::log(negligible) / kappa; }
+
+namespace {
+
+/// What decides which entries of a row are kept: the cutoff distance R* between centroids,
+/// which is also the reach of the candidate search around a panel's box (the boxes of two
+/// panels, around their corners, are no farther apart than their centroids). The centroids
+/// are copied in tree order, so that a leaf's candidates are read contiguously.
+struct Cutoff {
+  double distance = 0.0;
+  Eigen::Matrix3Xd centroids;  ///< column j: the centroid of the panel at tree position j
+  Cutoff(const std::vector<Panel>& panels, const ClusterTree& tree, double kappa, double negligible)
+      : distance(yukawa_cutoff_distance(kappa, negligible)), centroids(3, Eigen::Index(panels.size())) {
+    const auto& perm = tree.permutation();
+    for (Eigen::Index j = 0; j < centroids.cols(); ++j) centroids.col(j) = panels[size_t(perm[size_t(j)])].centroid;
+  }
+  bool kept(const Eigen::Vector3d& test, Eigen::Index j) const {
+    return (test - centroids.col(j)).squaredNorm() <= distance * distance;
+  }
+};
+
+/// The columns of one row: tree positions, in increasing order, of the panels the cutoff
+/// keeps for `test` among those whose boxes come within the reach of its box (the leaves
+/// are visited left to right, so the positions come out sorted). `stack` is scratch space.
+void row_columns(const Panel& test, const ClusterTree& tree, const Cutoff& cutoff,
+                 std::vector<int>& stack, std::vector<Eigen::Index>& columns) {
+  BoundingBox box;
+  for (const auto& c : test.corners) box.extend(c);
+  columns.clear();
+  tree.for_each_leaf_near(box, cutoff.distance, stack, [&](const Cluster& leaf) {
+    for (Eigen::Index j = leaf.begin; j < leaf.end; ++j)
+      if (cutoff.kept(test.centroid, j)) columns.push_back(j);
+  });
+}
+
+ResourceError ran_out_of_memory(Eigen::Index n) {
+  return ResourceError("the exterior near field of " + std::to_string(n) +
+                       " faces ran out of memory while assembling; use a coarser mesh "
+                       "(larger --max-edge)");
+}
+
+}  // namespace
+
+Eigen::Index yukawa_near_field_runs(const std::vector<Eigen::Index>& columns) {
+  Eigen::Index runs = 0;
+  YukawaNearField<float>::for_each_run(columns, [&runs](Eigen::Index, Eigen::Index) { ++runs; });
+  return runs;
+}
+
+YukawaNearFieldRows yukawa_near_field_rows(const std::vector<Panel>& panels, const ClusterTree& tree,
+                                           double kappa, double negligible) {
+  const auto& perm = tree.permutation();
+  const Eigen::Index n = tree.root().size();
+  const Cutoff cutoff(panels, tree, kappa, negligible);
+  YukawaNearFieldRows rows{Eigen::VectorX<Eigen::Index>(n), Eigen::VectorX<Eigen::Index>(n)};
+  std::atomic<bool> out_of_memory{false};
+#pragma omp parallel
+  {
+    std::vector<Eigen::Index> kept;
+    std::vector<int> stack;
+#pragma omp for schedule(dynamic, 64)
+    for (Eigen::Index i = 0; i < n; ++i) {
+      if (cancellation_requested() || out_of_memory) continue;
+      try {
+        const Panel& test = panels[size_t(perm[size_t(i)])];
+        row_columns(test, tree, cutoff, stack, kept);
+        rows.pairs(i) = Eigen::Index(kept.size());
+        rows.runs(i) = yukawa_near_field_runs(kept);
+      } catch (const std::bad_alloc&) {
+        out_of_memory = true;  // reported after the loop: an exception cannot leave it
+      }
+    }
+  }
+  throw_if_cancelled();
+  if (out_of_memory) throw ran_out_of_memory(n);
+  return rows;
+}
+
+template <class Scalar>
+YukawaNearField<Scalar> assemble_yukawa_near_field(const std::vector<Panel>& panels,
+                                                   const ClusterTree& tree, double kappa,
+                                                   double negligible,
+                                                   const ProgressCallback& progress,
+                                                   const YukawaNearFieldRows* rows) {
+  const auto& perm = tree.permutation();
+  const Eigen::Index n = tree.root().size();
+  const Cutoff cutoff(panels, tree, kappa, negligible);
+  // Two passes, so that the rows are written straight into the matrix and nothing else of
+  // its size is ever held: first each row's pairs and runs (yukawa_near_field_rows), then the
+  // entries.
+  YukawaNearFieldRows counted;
+  if (!rows) counted = yukawa_near_field_rows(panels, tree, kappa, negligible);
+  const YukawaNearFieldRows& room = rows ? *rows : counted;
+  BEMSHAPE_ASSERT(room.pairs.size() == n && room.runs.size() == n,
+                  "exterior near field: one row size per panel");
+  std::atomic<bool> out_of_memory{false};
+  const Eigen::Index pairs = room.pairs.sum(), runs = room.runs.sum();
+  if (pairs > std::numeric_limits<std::int32_t>::max())
+    throw ResourceError("the exterior near field of " + std::to_string(n) + " faces needs " +
+                        std::to_string(pairs) + " panel pairs, more than its 32-bit index allows (" +
+                        std::to_string(std::numeric_limits<std::int32_t>::max()) +
+                        "); use a coarser mesh (larger --max-edge)");
+  // The exact size against the memory left now (the interior H-matrix is already held).
+  require_memory(YukawaNearField<Scalar>::bytes_for(std::uint64_t(pairs), std::uint64_t(runs), n),
+                 "the exterior near field of " + std::to_string(n) + " faces (" +
+                     std::to_string(pairs) + " panel pairs)",
+                 "use a coarser mesh (larger --max-edge)");
+  YukawaNearField<Scalar> y;
+  try {
+    y = YukawaNearField<Scalar>(room);
+  } catch (const std::bad_alloc&) {
+    throw ran_out_of_memory(n);
+  }
+  GalerkinOperators<YukawaKernel> yukawa(YukawaKernel{kappa}, panels);
+  yukawa.tabulate_touching_pairs();
+
+  std::atomic<Eigen::Index> rows_done{0};
+#pragma omp parallel
+  {
+    std::vector<int> stack;
+    std::vector<Eigen::Index> kept, faces;
+    std::vector<GalerkinOperators<YukawaKernel>::Entry> entries;
+    // Each row writes only its own slots, so the rows can be filled concurrently.
+#pragma omp for schedule(dynamic, 16)
+    for (Eigen::Index i = 0; i < n; ++i) {
+      // A cancelled run skips the remaining rows (an exception cannot leave the parallel loop).
+      if (cancellation_requested() || out_of_memory) continue;
+      try {
+        const Panel& test = panels[size_t(perm[size_t(i)])];
+        row_columns(test, tree, cutoff, stack, kept);
+        faces.resize(kept.size());
+        for (size_t t = 0; t < kept.size(); ++t) faces[t] = perm[size_t(kept[t])];
+        y.set_columns(i, kept);
+        entries.resize(kept.size());
+        yukawa.fill_row(perm[size_t(i)], faces, entries);
+        const Eigen::Index first = y.row_begin(i);
+        for (size_t t = 0; t < kept.size(); ++t) {
+          y.minus_double_layer()[first + Eigen::Index(t)] = static_cast<Scalar>(-entries[t].double_layer);
+          y.single_layer()[first + Eigen::Index(t)] = static_cast<Scalar>(entries[t].single_layer);
+        }
+      } catch (const std::bad_alloc&) {
+        out_of_memory = true;
+      }
+      const Eigen::Index done = ++rows_done;
+      if (progress && done % 1024 == 0) {
+#pragma omp critical(bemshape_progress)
+        report_progress(progress, "assemble exterior", double(done) / double(n));
+      }
+    }
+  }
+  throw_if_cancelled();
+  if (out_of_memory) throw ran_out_of_memory(n);
+  return y;
+}
+
+template YukawaNearField<double> assemble_yukawa_near_field<double>(
+    const std::vector<Panel>&, const ClusterTree&, double, double, const ProgressCallback&,
+    const YukawaNearFieldRows*);
+template YukawaNearField<float> assemble_yukawa_near_field<float>(
+    const std::vector<Panel>&, const ClusterTree&, double, double, const ProgressCallback&,
+    const YukawaNearFieldRows*);
+
+}  // namespace bemshape::bem

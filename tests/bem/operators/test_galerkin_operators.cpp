@@ -1,0 +1,161 @@
+// Identities of the Galerkin boundary operators (docs/theory.md, section 2) on closed
+// polyhedra, where they hold exactly up to quadrature.
+#include <catch2/catch.hpp>
+
+#include <Eigen/Geometry>
+
+#include "bem/operators/galerkin_operators.hpp"
+#include "bem/kernels/laplace_kernel.hpp"
+#include "bem/quadrature/panel.hpp"
+#include "bem/kernels/yukawa_kernel.hpp"
+#include "geometry/primitive_meshes.hpp"
+
+using namespace bemshape;
+using namespace bemshape::bem;
+
+namespace {
+Eigen::MatrixXd assemble(const std::vector<Panel>& panels, auto kernel, bool double_layer) {
+  const GalerkinOperators op(kernel, panels);
+  const auto n = static_cast<Eigen::Index>(panels.size());
+  Eigen::MatrixXd m(n, n);
+  for (Eigen::Index j = 0; j < n; ++j)
+    for (Eigen::Index k = 0; k < n; ++k) {
+      const auto e = op.entry(j, k);
+      m(j, k) = double_layer ? e.double_layer : e.single_layer;
+    }
+  return m;
+}
+}  // namespace
+
+TEST_CASE("Laplace double layer of the unit density is -1/2 on a closed surface (K0[1] = -1/2)") {
+  for (const auto& mesh : {geometry::make_geodesic_sphere(0.5, 4),
+                           geometry::make_box(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0.5, 0.3), 0.2)}) {
+    const auto panels = make_panels(mesh);
+    const Eigen::MatrixXd k0 = assemble(panels, LaplaceKernel{}, true);
+    const Eigen::VectorXd row_sums = k0.rowwise().sum();
+    for (Eigen::Index j = 0; j < row_sums.size(); ++j)
+      CHECK(row_sums(j) / mesh.face_areas()(j) == Approx(-0.5).margin(2e-3));
+    // Area-weighted: the graded outer rules (bem/operators/galerkin_operators.hpp) integrate each
+    // panel's far-field potential to about 1e-3; a sign or jump error would show as O(1).
+    CHECK(row_sums.sum() / mesh.area() == Approx(-0.5).margin(1e-3));
+  }
+}
+
+TEST_CASE("Laplace single layer of the unit density approaches R on a sphere (V0[1] = R)") {
+  double previous = 1.0;
+  for (int n : {2, 4, 8}) {
+    const auto mesh = geometry::make_geodesic_sphere(0.5, n);
+    const Eigen::MatrixXd v0 = assemble(make_panels(mesh), LaplaceKernel{}, false);
+    const double mean = v0.sum() / mesh.area();  // area-weighted mean of V0[1] over Γ
+    const double error = std::abs(mean - 0.5) / 0.5;
+    CHECK(error < previous / 2.5);  // the inscribed polyhedron converges at second order
+    previous = error;
+  }
+  CHECK(previous < 5e-3);
+}
+
+TEST_CASE("Laplace single layer is symmetric (Galerkin)") {
+  const auto mesh = geometry::make_geodesic_sphere(1.0, 3);
+  const Eigen::MatrixXd v0 = assemble(make_panels(mesh), LaplaceKernel{}, false);
+  // The outer rules are graded by distance, so symmetry holds to their accuracy (~1e-4).
+  CHECK((v0 - v0.transpose()).norm() / v0.norm() < 3e-4);
+}
+
+TEST_CASE("Yukawa single layer of the unit density on a large flat panel tends to 1/(2κ)") {
+  // A 2×2 square meshed finely, κ = 50: panels further than 20/κ from the border see an
+  // infinite plane up to e^{−20}.
+  const double kappa = 50.0;
+  const auto box = geometry::make_box(Eigen::Vector3d(-1, -1, -1), Eigen::Vector3d(1, 1, 0), 0.1);
+  const auto panels = make_panels(box);
+  const GalerkinOperators op(YukawaKernel{kappa}, panels);
+  int checked = 0;
+  for (Eigen::Index j = 0; j < box.num_faces(); j += 7) {
+    const Eigen::Vector3d c = box.face_centroids().row(j).transpose();
+    if (c.z() < -1e-12 || c.head<2>().cwiseAbs().maxCoeff() > 1.0 - 20.0 / kappa) continue;
+    double sum = 0.0;
+    for (Eigen::Index k = 0; k < box.num_faces(); ++k) sum += op.entry(j, k).single_layer;
+    CHECK(sum / box.face_areas()(j) == Approx(1.0 / (2.0 * kappa)).epsilon(1e-6));
+    ++checked;
+  }
+  CHECK(checked > 20);
+}
+
+TEST_CASE("Galerkin entries are invariant under rotation and translation") {
+  const auto mesh = geometry::make_geodesic_sphere(0.5, 2);
+  const Eigen::Matrix3d r =
+      Eigen::AngleAxisd(0.9, Eigen::Vector3d(1, -2, 0.5).normalized()).toRotationMatrix();
+  const auto moved = geometry::transformed(mesh, r, Eigen::Vector3d(3.0, -1.0, 7.0));
+  const auto a = make_panels(mesh), b = make_panels(moved);
+  for (const bool dl : {false, true}) {
+    const Eigen::MatrixXd ka = assemble(a, YukawaKernel{20.0}, dl), kb = assemble(b, YukawaKernel{20.0}, dl);
+    CHECK((ka - kb).norm() / ka.norm() < 1e-10);
+    const Eigen::MatrixXd la = assemble(a, LaplaceKernel{}, dl), lb = assemble(b, LaplaceKernel{}, dl);
+    CHECK((la - lb).norm() / la.norm() < 1e-10);
+  }
+}
+
+TEST_CASE("Yukawa attenuated entries: the trial panel's collapsed Gauss rule is within the "
+          "attenuation budget of the accurate panel integral") {
+  // Attenuated pairs (e^{−κ·gap} < 1e−3) take the test panel's centroid as the outer rule,
+  // like the far pairs (OuterRuleThresholds: the outer rule is set by the discretisation
+  // error), and a collapsed Gauss rule on the trial panel whose size attenuated_rule_points
+  // picks for an error below 1e−9 of the unattenuated magnitude |T_j||T_k|/(4π·r). The
+  // reference is integrate_panel at the same centroid (1e−8 relative accuracy). Sphere
+  // panels at κ·h = 3, the default element size.
+  const auto sphere = geometry::make_geodesic_sphere(0.5, 8);
+  const auto panels = make_panels(sphere);
+  const double edge = std::sqrt(4.0 * sphere.face_areas().mean() / std::sqrt(3.0));
+  const double kappa = 3.0 / edge;
+  const YukawaKernel kernel{kappa};
+  const GalerkinOperators op(kernel, panels);
+  const Panel& test = panels[0];
+  int checked = 0;
+  for (size_t k = 1; k < panels.size(); k += 3) {
+    const Panel& trial = panels[k];
+    const double distance = (test.centroid - trial.centroid).norm();
+    const double gap = distance - test.radius - trial.radius;
+    const double attenuation = std::exp(-kappa * gap);
+    const double ratio = distance / std::max(test.diameter, trial.diameter);
+    if (gap <= 0.0 || attenuation >= YukawaAttenuation::cheap_rule || ratio < 1.5 ||
+        attenuation < YukawaAttenuation::negligible ||
+        attenuated_rule_points(attenuation, kappa * trial.diameter, ratio) == 0)
+      continue;  // not in the attenuated class
+    const auto cheap = op.entry(0, Eigen::Index(k));
+    const PanelIntegrals accurate = integrate_panel(kernel, trial, test.centroid);
+    const double unattenuated = test.area * trial.area * YukawaKernel::inv_four_pi / distance;
+    CHECK(std::abs(cheap.single_layer - test.area * accurate.single_layer) <= 1e-9 * unattenuated);
+    CHECK(std::abs(cheap.double_layer - test.area * accurate.double_layer) <= 1e-9 * unattenuated);
+    CHECK(cheap.single_layer > 0.0);
+    ++checked;
+  }
+  CHECK(checked > 20);
+}
+
+TEST_CASE("Touching pairs: tabulated entries equal computed ones, V[j, k] = V[k, j] exactly") {
+  for (const auto& mesh : {geometry::make_geodesic_sphere(0.5, 4),
+                           geometry::make_box(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0.5, 0.3), 0.2)}) {
+    const auto panels = make_panels(mesh);
+    const auto n = static_cast<Eigen::Index>(panels.size());
+    const auto check = [&](auto kernel) {
+      const GalerkinOperators computed(kernel, panels);
+      GalerkinOperators tabulated(kernel, panels);
+      tabulated.tabulate_touching_pairs();
+      int touching = 0;
+      for (Eigen::Index j = 0; j < n; ++j)
+        for (Eigen::Index k = 0; k < n; ++k) {
+          if (!computed.touching(panels[size_t(j)], panels[size_t(k)])) continue;
+          ++touching;
+          const auto a = computed.entry(j, k), b = tabulated.entry(j, k), t = computed.entry(k, j);
+          REQUIRE(a.single_layer == b.single_layer);
+          REQUIRE(a.double_layer == b.double_layer);
+          REQUIRE(a.single_layer == t.single_layer);
+        }
+      // Every panel touches itself and at least its three edge neighbours.
+      CHECK(touching >= 4 * n);
+      // Pairs that do not touch are computed as before (the table holds touching pairs only).
+      CHECK(tabulated.entry(0, n - 1).single_layer == computed.entry(0, n - 1).single_layer);
+    };
+    check(LaplaceKernel{});
+    check(YukawaKernel{20.0});
+  }
+}
