@@ -13,7 +13,8 @@
 #include <optional>
 #include <string>
 
-#include "apps/boundary_solve.hpp"
+#include "analysis/measure_features.hpp"
+#include "analysis/stage_times.hpp"
 #include "apps/exit_codes.hpp"
 #include "apps/output/csv_writer.hpp"
 #include "apps/output/vti_writer.hpp"
@@ -22,24 +23,18 @@
 #include "apps/report_text.hpp"
 #include "apps/run_limits.hpp"
 #include "apps/solver_mesh_options.hpp"
-#include "apps/stage_times.hpp"
-#include "bem/evaluate/potential_evaluation.hpp"
 #include "core/errors.hpp"
-#include "features/point_features.hpp"
 
 namespace bemshape::apps {
 namespace {
 
 namespace fs = std::filesystem;
 
-/// Largest number of evaluation points accepted. The treecode of bem::evaluate_potential
-/// costs about 1.2 ms of CPU per point on a 20,000-face part (docs/benchmarks.md,
-/// "Interior evaluation at many points"): 10⁶ points are about ten minutes on two free cores —
-/// beyond that a coarser grid answers sooner.
-constexpr double kMaxPoints = 1.0e6;
+using analysis::kMaxPoints;
+using analysis::StageTimes;
 
 struct FeaturesOptions {
-  SolverChoice solver;  ///< --solver, --tolerance
+  SolverChoiceText solver;  ///< --solver, --far-field, --tolerance
   std::string input;
   std::string points_path;
   std::optional<double> grid_spacing;
@@ -54,51 +49,15 @@ struct FeaturesOptions {
   std::uint64_t max_memory_bytes = 0;
 };
 
-/// Node grid over a bounding box: nodes at origin + i·spacing, symmetric about the box centre
-/// and covering the box with at most one spacing to spare on each side.
-output::ImageGrid grid_over(const geometry::BoundingBox& box, double spacing) {
-  output::ImageGrid grid;
-  const Eigen::Vector3d centre = 0.5 * (box.min + box.max), extent = box.extent();
+/// The grid as the VTK ImageData writer takes it.
+output::ImageGrid image_grid(const analysis::PointGrid& grid) {
+  output::ImageGrid image;
   for (int d = 0; d < 3; ++d) {
-    grid.cells[d] = static_cast<long long>(std::ceil(extent(d) / spacing)) + 1;
-    grid.spacing[d] = spacing;
-    grid.origin[d] = centre(d) - 0.5 * spacing * double(grid.cells[d]);
+    image.cells[d] = grid.cells[d];
+    image.origin[d] = grid.origin[d];
+    image.spacing[d] = grid.spacing[d];
   }
-  return grid;
-}
-
-double point_count(const output::ImageGrid& grid) {
-  return double(grid.cells[0] + 1) * double(grid.cells[1] + 1) * double(grid.cells[2] + 1);
-}
-
-/// Grid nodes, x fastest, then y, then z (VTK point order).
-Eigen::MatrixX3d grid_points(const output::ImageGrid& grid) {
-  const long long nx = grid.cells[0] + 1, ny = grid.cells[1] + 1, nz = grid.cells[2] + 1;
-  Eigen::MatrixX3d points(nx * ny * nz, 3);
-  Eigen::Index row = 0;
-  for (long long k = 0; k < nz; ++k)
-    for (long long j = 0; j < ny; ++j)
-      for (long long i = 0; i < nx; ++i, ++row)
-        points.row(row) << grid.origin[0] + double(i) * grid.spacing[0],
-            grid.origin[1] + double(j) * grid.spacing[1],
-            grid.origin[2] + double(k) * grid.spacing[2];
-  return points;
-}
-
-void refuse_large_grid(const FeaturesOptions& options, const geometry::PreparedMesh& input) {
-  const double spacing = *options.grid_spacing;
-  const output::ImageGrid grid = grid_over(input.report.bounding_box, spacing);
-  const double count = point_count(grid);
-  if (count <= kMaxPoints)
-    return;
-  // Points scale like 1/spacing³; 5 % margin for the rounding up of the cell counts.
-  const double coarser = 1.05 * spacing * std::cbrt(count / kMaxPoints);
-  throw ResourceError("--grid " + number_text(spacing, 4) + " gives " + number_text(count, 4) +
-                      " points (" + std::to_string(grid.cells[0] + 1) + " x " +
-                      std::to_string(grid.cells[1] + 1) + " x " +
-                      std::to_string(grid.cells[2] + 1) + "), more than the limit of " +
-                      number_text(kMaxPoints, 4) + "; use --grid " + number_text(coarser, 4) +
-                      " or coarser, or --points with the points of interest");
+  return image;
 }
 
 std::string lower_extension(const std::string& path) {
@@ -148,45 +107,25 @@ void run_features(const FeaturesOptions& options, int& exit_code) {
                         "; split the file into smaller batches");
 
   ProgressDisplay display(options.quiet);
-  BoundarySolveSetup setup;
-  setup.input = options.input;
-  setup.h0 = *options.h0;
-  setup.a = options.a;
-  setup.max_edge = options.max_edge;
-  setup.sharp_angle_degrees = options.sharp_angle;
-  setup.solver = options.solver;
-  setup.max_memory_bytes = options.max_memory_bytes;
-  if (grid_mode)
-    setup.check_input = [&options](const geometry::PreparedMesh& input) {
-      refuse_large_grid(options, input);
-      return std::uint64_t{0};  // the grid's points are allocated after the solve
-    };
-  const BoundarySolveRun run = prepare_and_solve(setup, times, display.callback());
+  analysis::FeaturesOptions job;
+  job.solve = solve_options(*options.h0, options.a, options.max_edge, options.sharp_angle,
+                            options.solver, options.max_memory_bytes);
+  job.skeleton_width = options.skeleton_width;
+  const fs::path input(options.input);
+  const analysis::FeaturesResult result =
+      grid_mode ? analysis::measure_features_on_grid(input, *options.grid_spacing, job,
+                                                     display.callback())
+                : analysis::measure_features(input, points, job, display.callback());
+  points = Eigen::MatrixX3d();  // the result holds them
+  times.add(result.times);
+  const analysis::BoundarySolve& run = result.boundary;
+  const bem::PotentialField& field = result.field;
+  const features::FeatureField<3>& f = result.features;
+  const features::FeatureParameters& parameters = result.parameters;
+  const output::ImageGrid grid = grid_mode ? image_grid(*result.grid) : output::ImageGrid{};
+  const Eigen::MatrixX3d& at = result.points;
 
-  output::ImageGrid grid;
-  if (grid_mode) {
-    grid = grid_over(run.input.report.bounding_box, *options.grid_spacing);
-    points = grid_points(grid);
-  }
-  report_progress(display.callback(), "evaluate", 0.0);
-  const bem::PotentialField field = times.time("evaluate", [&] {
-    // The treecode's error tracks the solver's: no larger than the residual asked for.
-    bem::PotentialEvaluationOptions evaluation;
-    evaluation.treecode = bem::LaplaceTreecodeParameters::for_tolerance(options.solver.tolerance);
-    return bem::evaluate_potential(run.solver_mesh, run.solution, points, display.callback(),
-                                   evaluation);
-  });
-  features::FeatureParameters parameters;
-  parameters.h0 = *options.h0;
-  parameters.a = options.a;
-  parameters.skeleton_width =
-      options.skeleton_width.value_or(grid_mode ? *options.grid_spacing : run.max_edge);
-  report_progress(display.callback(), "features", 0.0);
-  const features::FeatureField<3> f = times.time("features", [&] {
-    return features::compute_features<3>(field.s, field.gradient, field.inside, parameters);
-  });
-
-  const Eigen::Index np = points.rows();
+  const Eigen::Index np = at.rows();
   Eigen::VectorXd inside(np), skeleton(np);
   for (Eigen::Index p = 0; p < np; ++p) {
     inside(p) = field.inside[static_cast<std::size_t>(p)] ? 1.0 : 0.0;
@@ -208,7 +147,7 @@ void run_features(const FeaturesOptions& options, int& exit_code) {
       return;
     }
     Eigen::MatrixXd rows(np, 14);
-    rows << points, inside, field.s, f.f_h, f.h_f, f.h_p, f.n_f, skeleton;
+    rows << at, inside, field.s, f.f_h, f.h_f, f.h_p, f.n_f, skeleton;
     const std::vector<std::string> header{"x",   "y",   "z",   "inside", "s_x", "s_y", "s_z",
                                           "f_h", "h_f", "h_p", "n_x",    "n_y", "n_z", "skeleton"};
     if (options.output.empty())
@@ -218,12 +157,8 @@ void run_features(const FeaturesOptions& options, int& exit_code) {
   });
   display.finish();
   // h_f and h_p are clamped to 0 where the inverse thickness exceeds 1/a
-  // (features/thickness.hpp): a wall thinner than zero, which only the discretisation
-  // produces. Counted so that a 0 in the output is not taken for a measured wall.
-  Eigen::Index clamped = 0;
-  for (Eigen::Index p = 0; p < np; ++p)
-    if (field.inside[static_cast<std::size_t>(p)] && (f.h_f(p) == 0.0 || f.h_p(p) == 0.0))
-      ++clamped;
+  // (features/thickness.hpp): counted so that a 0 in the output is not taken for a wall.
+  const Eigen::Index clamped = result.clamped_points;
   const auto warn_clamped = [&](std::ostream& out) {
     if (clamped == 0)
       return;
@@ -242,7 +177,7 @@ void run_features(const FeaturesOptions& options, int& exit_code) {
               << number_text(options.a, 4) << ", max edge " << number_text(run.max_edge, 4) << " ("
               << run.max_edge_rule << "), skeleton width "
               << number_text(parameters.skeleton_width, 4) << '\n'
-              << "  mesh         " << run.input.report.faces << " input faces, "
+              << "  mesh         " << result.input.report.faces << " input faces, "
               << run.solver_mesh.num_faces() << " solver faces\n"
               << "  points       " << np << " (" << inside_count << " inside)";
     if (grid_mode)

@@ -10,11 +10,12 @@
 #include <string>
 #include <vector>
 
+#include "analysis/memory_budget.hpp"
+#include "analysis/voxel_resolution.hpp"
 #include "apps/exit_codes.hpp"
 #include "apps/output/png_writer.hpp"
 #include "apps/output/vti_writer.hpp"
 #include "apps/run_limits.hpp"
-#include "apps/voxel_memory_check.hpp"
 #include "core/errors.hpp"
 #include "fem/binary_image.hpp"
 #include "fem/characteristic_function.hpp"
@@ -26,6 +27,11 @@ namespace bemshape::apps {
 namespace {
 
 namespace fs = std::filesystem;
+using analysis::image_memory_check;
+using analysis::kDefaultH0Cells;
+using analysis::kMaxResolvedKappaCell;
+using analysis::voxel_grid_memory_check;
+using analysis::VoxelMemoryBudget;
 
 struct FemOptions {
   std::string input, output;

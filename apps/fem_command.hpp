@@ -4,16 +4,11 @@
 // PNG (black = solid), a folder of PNG slices or a raw byte volume (with --dims), or a
 // closed surface mesh (voxelised by an exact inside test). Writes OUT (.vti, cell data:
 // chi, s, f_h, h_f, h_p, n_f, skeleton) and for 2-D input also OUT_<field>.png pictures.
+// Without --h0, h0 is analysis::kDefaultH0Cells cells (analysis/voxel_resolution.hpp).
 
 #include <CLI/CLI.hpp>
 
 namespace bemshape::apps {
-
-/// Default h0 in cells: κ·cell = 2·cell/(a·h0) = 0.5 at a = 0.2, the resolution at which the
-/// thickness error is about 1% (docs/validation.md). Shared with `bemshape compare`.
-inline constexpr double kDefaultH0Cells = 20.0;
-/// κ·cell above which the exterior boundary layer is under-resolved (errors of several %).
-inline constexpr double kMaxResolvedKappaCell = 0.5;
 
 /// Adds the `fem` subcommand to `app`; stores its exit code in `exit_code` when it runs.
 void register_fem_command(CLI::App& app, int& exit_code);

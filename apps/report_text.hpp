@@ -1,20 +1,15 @@
 #pragma once
 // Number formatting of the human-readable reports on stdout (JSON and the data files use
-// full precision elsewhere: apps/output/number_text.hpp).
+// full precision elsewhere: apps/output/number_text.hpp): number_text (core/number_text.hpp)
+// and points.
 
-#include <cstdio>
 #include <string>
 
 #include <Eigen/Core>
 
-namespace bemshape::apps {
+#include "core/number_text.hpp"
 
-/// x with `digits` significant digits (printf %g): "12.7", "0.000123", "1.5e+06".
-inline std::string number_text(double x, int digits) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.*g", digits, x);
-  return buffer;
-}
+namespace bemshape::apps {
 
 /// "(x, y, z)" with six significant digits per coordinate [model units].
 inline std::string point_text(const Eigen::Vector3d& p) {

@@ -12,7 +12,8 @@
 #include <optional>
 #include <string>
 
-#include "apps/boundary_solve.hpp"
+#include "analysis/measure_thickness.hpp"
+#include "analysis/stage_times.hpp"
 #include "apps/exit_codes.hpp"
 #include "apps/output/atomic_file.hpp"
 #include "apps/output/csv_writer.hpp"
@@ -22,10 +23,7 @@
 #include "apps/report_text.hpp"
 #include "apps/run_limits.hpp"
 #include "apps/solver_mesh_options.hpp"
-#include "apps/stage_times.hpp"
-#include "apps/surface_features.hpp"
 #include "apps/thickness_html_report.hpp"
-#include "apps/thickness_statistics.hpp"
 #include "core/errors.hpp"
 #include "core/huge_pages.hpp"
 #include "core/memory.hpp"
@@ -35,9 +33,18 @@ namespace bemshape::apps {
 namespace {
 
 namespace fs = std::filesystem;
+using analysis::kColumnFh;
+using analysis::kColumnHf;
+using analysis::kColumnHp;
+using analysis::kColumnNf;
+using analysis::StageTimes;
+using analysis::SurfaceFeatures;
+using analysis::ThicknessResult;
+using analysis::ThicknessStatistics;
+using analysis::ThinRegion;
 
 struct ThicknessOptions {
-  SolverChoice solver;  ///< --solver, --tolerance
+  SolverChoiceText solver;  ///< --solver, --far-field, --tolerance
   std::string input;
   std::optional<double> h0;
   double a = 0.2;
@@ -97,18 +104,6 @@ void require_writable_folder(const std::string& path, const char* option) {
     throw InputError(path + ": the folder of " + option + " does not exist");
 }
 
-struct ThicknessResult {
-  std::string measure_column;  // "h_p" or "h_f"
-  int column = kColumnHp;
-  SurfaceFeatures original;     // on the input mesh
-  Eigen::VectorXd solver_face;  // selected thickness per solver face
-  ThicknessStatistics statistics;
-  std::vector<ThinRegion> regions;
-  /// Solver faces whose thickness h0(1/f − a) came out negative and was clamped to 0
-  /// (features/thickness.hpp): f above 1/a, which only discretisation error produces.
-  Eigen::Index clamped_faces() const { return (solver_face.array() == 0.0).count(); }
-};
-
 /// Writes `v` (features on `mesh`) to `path` in `format`.
 void write_output(const std::string& path, OutputFormat format, const geometry::SurfaceMesh& mesh,
                   const SurfaceFeatures& v, const ThicknessResult& result) {
@@ -162,8 +157,9 @@ nlohmann::json region_json(const ThinRegion& r) {
           {"faces", r.faces}};
 }
 
-nlohmann::json report_json(const ThicknessOptions& options, double h0, const BoundarySolveRun& run,
+nlohmann::json report_json(const ThicknessOptions& options, double h0,
                            const ThicknessResult& result, const StageTimes& times, double peak_mb) {
+  const analysis::BoundarySolve& run = result.boundary;
   const ThicknessStatistics& s = result.statistics;
   nlohmann::json parameters = {{"h0", h0},
                                {"a", options.a},
@@ -200,7 +196,7 @@ nlohmann::json report_json(const ThicknessOptions& options, double h0, const Bou
   nlohmann::json operator_parts = nlohmann::json::object();
   for (const auto& [part, bytes] : run.solution.report.operator_parts)
     operator_parts[part] = double(bytes) / 1e6;
-  const geometry::MeshReport& input = run.input.report;
+  const geometry::MeshReport& input = result.input.report;
   return {
       {"bemshape", BEMSHAPE_VERSION},
       {"command", "thickness"},
@@ -230,7 +226,7 @@ nlohmann::json report_json(const ThicknessOptions& options, double h0, const Bou
         {"min_location", vec(s.min_location)},
         {"measured_area", s.measured_area},
         {"unmeasurable_area", s.unmeasurable_area},
-        {"clamped_faces", result.clamped_faces()}}},
+        {"clamped_faces", result.clamped_faces}}},
       {"check", check},
       {"solver",
        {{"method", run.solution.report.method},
@@ -251,7 +247,8 @@ nlohmann::json report_json(const ThicknessOptions& options, double h0, const Bou
 /// The parameters table of the HTML report.
 std::vector<std::pair<std::string, std::string>> html_parameters(const ThicknessOptions& options,
                                                                  double h0,
-                                                                 const BoundarySolveRun& run) {
+                                                                 const ThicknessResult& result) {
+  const analysis::BoundarySolve& run = result.boundary;
   return {{"input", options.input},
           {"h0", number_text(h0, 6)},
           {"a", number_text(options.a, 6)},
@@ -260,7 +257,7 @@ std::vector<std::pair<std::string, std::string>> html_parameters(const Thickness
            options.min_thickness ? number_text(*options.min_thickness, 6) : "none"},
           {"max edge", number_text(run.max_edge, 6) + " (" + run.max_edge_rule + ")"},
           {"solver faces", std::to_string(run.solver_mesh.num_faces())},
-          {"input faces", std::to_string(run.input.report.faces)},
+          {"input faces", std::to_string(result.input.report.faces)},
           {"solver", run.solution.report.method},
           {"bemshape", BEMSHAPE_VERSION}};
 }
@@ -269,15 +266,15 @@ std::vector<std::pair<std::string, std::string>> html_parameters(const Thickness
 constexpr std::size_t kPrintedRegions = 10;
 
 void print_report(std::ostream& out, const ThicknessOptions& options, double h0,
-                  const BoundarySolveRun& run, const ThicknessResult& result,
-                  const StageTimes& times, double peak_mb) {
+                  const ThicknessResult& result, const StageTimes& times, double peak_mb) {
+  const analysis::BoundarySolve& run = result.boundary;
   const ThicknessStatistics& s = result.statistics;
   const auto& sr = run.solution.report;
   out << "bemshape thickness: " << options.input << "  (lengths in the input file's units)\n"
       << "  parameters   h0 " << number_text(h0, 6) << ", a " << number_text(options.a, 6)
       << ", measure " << options.measure << " (" << result.measure_column << "), max edge "
       << number_text(run.max_edge, 6) << " (" << run.max_edge_rule << ")\n"
-      << "  mesh         " << run.input.report.faces << " input faces, "
+      << "  mesh         " << result.input.report.faces << " input faces, "
       << run.solver_mesh.num_faces() << " solver faces (longest edge "
       << number_text(run.solver_mesh.max_edge_length(), 6) << ")\n"
       << "  solver       " << sr.method << ", " << sr.unknowns << " unknowns, residual "
@@ -291,7 +288,7 @@ void print_report(std::ostream& out, const ThicknessOptions& options, double h0,
     out << "               not measurable (no opposite wall within reach of h0) on area "
         << number_text(s.unmeasurable_area, 6) << " of "
         << number_text(s.unmeasurable_area + s.measured_area, 6) << '\n';
-  if (const Eigen::Index clamped = result.clamped_faces(); clamped > 0)
+  if (const Eigen::Index clamped = result.clamped_faces; clamped > 0)
     out << "  warning      thickness clamped to 0 on " << clamped << " solver face"
         << (clamped == 1 ? "" : "s") << ", where the inverse thickness exceeded 1/a:\n"
         << "               only discretisation error produces that. The solver mesh is probably\n"
@@ -357,46 +354,26 @@ void run_thickness(const ThicknessOptions& options, int& exit_code) {
     omp_set_num_threads(options.threads);
 
   ProgressDisplay display(options.quiet);
-  BoundarySolveSetup setup;
-  setup.input = options.input;
-  setup.h0 = h0;
-  setup.a = options.a;
-  setup.max_edge = options.max_edge;
-  setup.sharp_angle_degrees = options.sharp_angle;
-  setup.solver = options.solver;
-  setup.max_memory_bytes = options.max_memory_bytes;
-  const BoundarySolveRun run = prepare_and_solve(setup, times, display.callback());
-
-  features::FeatureParameters parameters;
-  parameters.h0 = h0;
-  parameters.a = options.a;
-  parameters.skeleton_width = run.max_edge;
-  ThicknessResult result;
-  result.column = options.measure == "paper" ? kColumnHf : kColumnHp;
-  result.measure_column = options.measure == "paper" ? "h_f" : "h_p";
-  const SurfaceFeatures solver_features = times.time("features", [&] {
-    report_progress(display.callback(), "surface features", 0.0);
-    return surface_features(run.solver_mesh, run.solution, parameters);
-  });
-  result.solver_face = solver_features.face.col(result.column);
-  result.statistics =
-      thickness_statistics(run.solver_mesh, result.solver_face, features::kMaxThicknessFactor * h0);
-  if (options.min_thickness)
-    result.regions = thin_regions(run.solver_mesh, result.solver_face, *options.min_thickness);
-  if (format != OutputFormat::none) {
-    result.original = times.time("map_back", [&] {
-      report_progress(display.callback(), "map to input mesh", 0.0);
-      return transfer_features(run.solver_mesh, solver_features, run.input.mesh);
-    });
+  analysis::ThicknessOptions job;
+  job.solve = solve_options(h0, options.a, options.max_edge, options.sharp_angle, options.solver,
+                            options.max_memory_bytes);
+  job.measure = options.measure == "paper" ? analysis::ThicknessMeasure::paper
+                                           : analysis::ThicknessMeasure::principal;
+  job.min_thickness = options.min_thickness;
+  job.map_to_input = format != OutputFormat::none;
+  const ThicknessResult result =
+      analysis::measure_thickness(fs::path(options.input), job, display.callback());
+  times.add(result.times);
+  if (format != OutputFormat::none)
     times.time("write", [&] {
       report_progress(display.callback(), "write " + lower_extension(options.output), 0.0);
-      write_output(options.output, format, run.input.mesh, result.original, result);
+      write_output(options.output, format, result.input.mesh, result.input_features, result);
     });
-  }
   if (solver_format != OutputFormat::none)
     times.time("write", [&] {
       report_progress(display.callback(), "write solver mesh", 0.0);
-      write_output(options.solver_output, solver_format, run.solver_mesh, solver_features, result);
+      write_output(options.solver_output, solver_format, result.boundary.solver_mesh,
+                   result.solver_features, result);
     });
   if (!options.html_path.empty())
     times.time("write", [&] {
@@ -404,18 +381,18 @@ void run_thickness(const ThicknessOptions& options, int& exit_code) {
       output::write_html_report(
           options.html_path,
           thickness_html_report({fs::path(options.input).filename().string(),
-                                 result.measure_column, &run.solver_mesh,
-                                 solver_features.vertex.col(result.column), result.solver_face,
-                                 features::kMaxThicknessFactor * h0, result.statistics,
-                                 result.regions, options.min_thickness,
-                                 html_parameters(options, h0, run)}));
+                                 result.measure_column, &result.boundary.solver_mesh,
+                                 result.solver_features.vertex.col(result.column),
+                                 result.thickness, features::kMaxThicknessFactor * h0,
+                                 result.statistics, result.regions, options.min_thickness,
+                                 html_parameters(options, h0, result)}));
     });
   display.finish();
   const double peak_mb = double(peak_resident_bytes()) / 1e6;
   if (!options.report_path.empty())
-    output::write_file_atomically(
-        options.report_path, report_json(options, h0, run, result, times, peak_mb).dump(2) + '\n');
-  print_report(std::cout, options, h0, run, result, times, peak_mb);
+    output::write_file_atomically(options.report_path,
+                                  report_json(options, h0, result, times, peak_mb).dump(2) + '\n');
+  print_report(std::cout, options, h0, result, times, peak_mb);
   std::cout.flush();
   exit_code = options.min_thickness && !result.regions.empty() ? kExitCheckFailed : kExitSuccess;
 }

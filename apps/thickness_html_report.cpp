@@ -19,7 +19,8 @@ Eigen::VectorXd without_unmeasurable(const Eigen::VectorXd& values, double unmea
   return out;
 }
 
-output::HtmlRegion html_region(const geometry::SurfaceMesh& mesh, const ThinRegion& region,
+output::HtmlRegion html_region(const geometry::SurfaceMesh& mesh,
+                               const analysis::ThinRegion& region,
                                int rank) {
   output::HtmlRegion r;
   r.kind = "thin";
@@ -72,7 +73,7 @@ output::HtmlReport thickness_html_report(const ThicknessHtmlInput& input) {
       report.verdict_text = "no wall thinner than " + threshold + ".";
     } else {
       double area = 0.0;
-      for (const ThinRegion& r : input.thin_regions)
+      for (const analysis::ThinRegion& r : input.thin_regions)
         area += r.area;
       const std::size_t n = input.thin_regions.size();
       report.verdict = "FAIL";

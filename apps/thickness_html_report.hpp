@@ -12,7 +12,7 @@
 #include <Eigen/Core>
 
 #include "apps/output/html_report.hpp"
-#include "apps/thickness_statistics.hpp"
+#include "analysis/thickness_statistics.hpp"
 #include "geometry/surface_mesh.hpp"
 
 namespace bemshape::apps {
@@ -27,8 +27,8 @@ struct ThicknessHtmlInput {
   Eigen::VectorXd vertex_thickness;             ///< #V of *mesh [model units]
   Eigen::VectorXd face_thickness;               ///< #F of *mesh [model units]
   double unmeasurable_from = 0.0;  ///< values at or above it have no thickness (drawn grey)
-  ThicknessStatistics statistics;
-  std::vector<ThinRegion> thin_regions;  ///< with their face lists, most severe first
+  analysis::ThicknessStatistics statistics;
+  std::vector<analysis::ThinRegion> thin_regions;  ///< with their face lists, most severe first
   std::optional<double> min_thickness;   ///< --min-thickness
   std::vector<std::pair<std::string, std::string>> parameters;
 };

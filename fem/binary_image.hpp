@@ -47,7 +47,7 @@ inline constexpr GridIndex kMaxImagePixels = GridIndex{1} << 31;
 
 /// Sees the pixel (voxel) count of an image once it is known from the header or the
 /// dimensions and before the pixels are allocated; may throw to refuse the image
-/// (apps/voxel_memory_check.hpp checks --max-memory with it).
+/// (analysis/memory_budget.hpp checks --max-memory with it).
 using PixelCheck = std::function<void(GridIndex pixels)>;
 
 /// Reads a PNG (any colour type or bit depth). Throws InputError if the file is missing or

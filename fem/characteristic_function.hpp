@@ -35,7 +35,8 @@ struct PlannedGrid {
       cells_with;
 };
 
-/// May throw to refuse a planned grid (apps/fem_command checks the run's memory with it).
+/// May throw to refuse a planned grid (analysis::voxel_grid_memory_check checks the run's
+/// memory with it).
 template <int D>
 using GridCheck = std::function<void(const PlannedGrid<D>& planned)>;
 

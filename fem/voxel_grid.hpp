@@ -128,7 +128,7 @@ inline constexpr GridIndex kDefaultMaxCells = D == 2 ? 12'000'000 : 9'000'000;
 /// Peak memory of a whole `bemshape fem` run [bytes] on a grid of `cells` cells (χ,
 /// coefficient, load and solution with D columns, CG and multigrid vectors on every level,
 /// feature fields, output copies, and the process itself), for its --max-memory guard
-/// (apps/fem_command.cpp): kRunBaseBytes + kRunBytesPerCell<D> × cells. Measured peak RSS
+/// (analysis/memory_budget.hpp): kRunBaseBytes + kRunBytesPerCell<D> × cells. Measured peak RSS
 /// with OMP_NUM_THREADS=1 fits 10 MB + 285-290 bytes per cell in 3-D (a ball: 36³ cells 25 MB,
 /// 56³ 60 MB, 96³ 260 MB, 112³ 409 MB) and 15 MB + 215 bytes per cell in 2-D (an L-shaped
 /// PNG: 864² 175 MB, 1728² 656 MB); the constants are rounded up from these.

@@ -285,4 +285,13 @@ PreparedMesh prepare_mesh_file(const std::filesystem::path& path,
   return prepared;
 }
 
+PreparedMesh prepare_triangle_soup(const TriangleSoup& soup, const std::string& source,
+                                   const MeshPreparationOptions& options,
+                                   const ProgressCallback& progress) {
+  PreparedMesh prepared = inspect_triangle_soup(soup, source, options, progress);
+  if (!prepared.report.usable())
+    throw InputError(prepared.report.refusal_message());
+  return prepared;
+}
+
 }  // namespace bemshape::geometry

@@ -1,5 +1,5 @@
 #pragma once
-// The whole input pipeline for apps/: read → weld → validate → repair → report.
+// The whole input pipeline of the jobs (analysis/): read → weld → validate → repair → report.
 //
 //   1. read the file into a triangle soup (mesh_io.hpp; polygons fan-triangulated);
 //   2. weld coincident vertices, exactly and within kWeldRelativeTolerance·diagonal;
@@ -95,5 +95,11 @@ PreparedMesh inspect_triangle_soup(const TriangleSoup& soup, const std::string& 
 PreparedMesh prepare_mesh_file(const std::filesystem::path& path,
                                const MeshPreparationOptions& options = {},
                                const ProgressCallback& progress = {});
+
+/// The same for a triangle soup in memory (e.g. arrays from another program), named
+/// `source` in messages: inspect_triangle_soup, then throw InputError if not usable.
+PreparedMesh prepare_triangle_soup(const TriangleSoup& soup, const std::string& source,
+                                   const MeshPreparationOptions& options = {},
+                                   const ProgressCallback& progress = {});
 
 }  // namespace bemshape::geometry

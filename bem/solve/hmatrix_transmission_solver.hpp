@@ -47,7 +47,7 @@ struct HMatrixSolverOptions {
   /// perturbs a product by about 4e−7 relative, the near field by less (measured,
   /// tests/bem/hmatrix), which leaves the solution unchanged at the default tolerance
   /// of 1e−6 (docs/benchmarks.md) but would dominate a tighter one: turn it off below 1e−6
-  /// (apps/boundary_solve does).
+  /// (analysis/boundary_solve.cpp does).
   bool single_precision = true;
   /// Panels per leaf of the cluster tree.
   Eigen::Index leaf_size = ClusterTree::kDefaultLeafSize;

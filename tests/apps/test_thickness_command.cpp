@@ -482,7 +482,7 @@ TEST_CASE("solver hmatrix: the same thickness as --solver dense, GMRES reported 
     const Eigen::VectorXd a = dense.col(column), b = fast.col(column);
     CHECK(((a - b).array().abs() / a.array()).maxCoeff() < 1e-5);
   }
-  // Below kAutoDenseFaces "auto" is the dense path.
+  // Below analysis::kAutoDenseFaces "auto" is the dense path.
   const Run r = run_bemshape("thickness '" + mesh + "' --h0 0.3 --max-edge 0.12 --quiet --report '" +
                              scratch("solver_auto.json") + "'");
   REQUIRE(r.exit_code == 0);

@@ -15,7 +15,7 @@
 
 #include "apps/output/html_report.hpp"
 #include "apps/thickness_html_report.hpp"
-#include "apps/thickness_statistics.hpp"
+#include "analysis/thickness_statistics.hpp"
 #include "geometry/primitive_meshes.hpp"
 
 int main(int argc, char** argv) {
@@ -45,8 +45,8 @@ int main(int argc, char** argv) {
     input.vertex_thickness = vertex_values;
     input.face_thickness = face_values;
     input.unmeasurable_from = 1e6;
-    input.statistics = apps::thickness_statistics(mesh, face_values, input.unmeasurable_from);
-    input.thin_regions = apps::thin_regions(mesh, face_values, threshold);
+    input.statistics = analysis::thickness_statistics(mesh, face_values, input.unmeasurable_from);
+    input.thin_regions = analysis::thin_regions(mesh, face_values, threshold);
     input.min_thickness = threshold;
     input.parameters = {{"part", "geodesic sphere, radius 50"},
                         {"frequency", std::to_string(frequency)},

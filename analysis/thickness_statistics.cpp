@@ -1,4 +1,4 @@
-#include "apps/thickness_statistics.hpp"
+#include "analysis/thickness_statistics.hpp"
 
 #include <algorithm>
 #include <map>
@@ -7,7 +7,7 @@
 
 #include "core/errors.hpp"
 
-namespace bemshape::apps {
+namespace bemshape::analysis {
 
 double weighted_quantile(const Eigen::VectorXd& values, const Eigen::VectorXd& areas, double p) {
   std::vector<Eigen::Index> order(static_cast<std::size_t>(values.size()));
@@ -121,4 +121,4 @@ std::vector<ThinRegion> thin_regions(const geometry::SurfaceMesh& mesh,
   return regions;
 }
 
-}  // namespace bemshape::apps
+}  // namespace bemshape::analysis

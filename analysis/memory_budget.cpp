@@ -1,13 +1,17 @@
-#include "apps/voxel_memory_check.hpp"
+#include "analysis/memory_budget.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
-#include "apps/fem_command.hpp"
+#include "analysis/voxel_resolution.hpp"
+#include "bem/solve/dense_transmission_solver.hpp"
+#include "core/errors.hpp"
 #include "core/memory.hpp"
+#include "core/number_text.hpp"
 #include "fem/voxel_grid.hpp"
 
-namespace bemshape::apps {
+namespace bemshape::analysis {
 namespace {
 
 /// Step by which the suggested --cell grows while looking for one whose grid fits, and the
@@ -22,6 +26,36 @@ double round_up_3_digits(double x) {
 }
 
 }  // namespace
+
+std::uint64_t remaining_memory_limit(std::uint64_t max_memory_bytes, std::uint64_t held_bytes) {
+  if (max_memory_bytes == 0)
+    return 0;
+  return max_memory_bytes > held_bytes ? max_memory_bytes - held_bytes : 1;
+}
+
+void require_dense_system_fits(const DenseSystemRefusal& refusal) {
+  const std::uint64_t budget = memory_budget_bytes(refusal.max_memory_bytes);
+  if (budget > 0 && bem::dense_solver_memory_bytes(refusal.solver_faces) > budget)
+    refuse_dense_system(refusal, budget);
+}
+
+void refuse_dense_system(const DenseSystemRefusal& refusal, std::uint64_t budget) {
+  const auto faces = static_cast<double>(refusal.solver_faces);
+  const double needed = double(bem::dense_solver_memory_bytes(refusal.solver_faces));
+  // 10 % below the limit: the remesher's face count for a given edge varies by a few percent.
+  const double fitting_faces = 0.9 * faces * std::sqrt(double(budget) / needed);
+  const double edge = refusal.max_edge * std::sqrt(faces / std::max(fitting_faces, 1.0));
+  std::ostringstream msg;
+  msg << refusal.source << ": the dense BEM solver needs " << number_text(needed / 1e9, 3)
+      << " GB for " << refusal.solver_faces << " solver faces (edge "
+      << number_text(refusal.max_edge, 3) << ", " << refusal.max_edge_rule << ") but only "
+      << number_text(double(budget) / 1e9, 3) << " GB may be used"
+      << memory_budget_reason(refusal.max_memory_bytes) << "; use a coarser mesh, e.g. "
+      << "--max-edge " << number_text(edge, 3) << " (about " << std::lround(fitting_faces)
+      << " faces; flat walls stay accurate up to --max-edge "
+      << number_text(refusal.flat_wall_max_edge, 3) << ")";
+  throw ResourceError(msg.str());
+}
 
 template <int D>
 fem::GridCheck<D> voxel_grid_memory_check(const VoxelMemoryBudget& budget,
@@ -87,4 +121,4 @@ template fem::GridCheck<3> voxel_grid_memory_check<3>(const VoxelMemoryBudget&,
 template fem::PixelCheck image_memory_check<2>(const VoxelMemoryBudget&);
 template fem::PixelCheck image_memory_check<3>(const VoxelMemoryBudget&);
 
-}  // namespace bemshape::apps
+}  // namespace bemshape::analysis

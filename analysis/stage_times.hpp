@@ -1,12 +1,14 @@
 #pragma once
-// Wall time of each stage of a run, in order, for the "timing" section of the reports.
+// Wall time of each stage of a run, in order: what the library's jobs return with their
+// results (analysis/measure_thickness.hpp, …) and the reports print in their "timing"
+// sections.
 
 #include <chrono>
 #include <string>
 #include <utility>
 #include <vector>
 
-namespace bemshape::apps {
+namespace bemshape::analysis {
 
 class StageTimes {
  public:
@@ -33,6 +35,11 @@ class StageTimes {
       }
     stages_.emplace_back(stage, seconds);
   }
+  /// Adds every stage of `other`, in its order.
+  void add(const StageTimes& other) {
+    for (const auto& [name, seconds] : other.stages())
+      add(name, seconds);
+  }
   const std::vector<std::pair<std::string, double>>& stages() const { return stages_; }
   /// Seconds since construction.
   double elapsed() const { return std::chrono::duration<double>(Clock::now() - start_).count(); }
@@ -42,4 +49,4 @@ class StageTimes {
   std::vector<std::pair<std::string, double>> stages_;
 };
 
-}  // namespace bemshape::apps
+}  // namespace bemshape::analysis

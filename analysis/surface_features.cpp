@@ -1,4 +1,4 @@
-#include "apps/surface_features.hpp"
+#include "analysis/surface_features.hpp"
 
 #include <vector>
 
@@ -6,7 +6,7 @@
 #include "features/point_features.hpp"
 #include "geometry/closest_point.hpp"
 
-namespace bemshape::apps {
+namespace bemshape::analysis {
 namespace {
 
 Eigen::MatrixXd feature_columns(const features::FeatureField<3>& field) {
@@ -98,4 +98,4 @@ SurfaceFeatures transfer_features(const geometry::SurfaceMesh& solver_mesh,
   return result;
 }
 
-}  // namespace bemshape::apps
+}  // namespace bemshape::analysis

@@ -33,7 +33,7 @@
 #include "features/feature_parameters.hpp"
 #include "geometry/surface_mesh.hpp"
 
-namespace bemshape::apps {
+namespace bemshape::analysis {
 
 inline constexpr int kFeatureColumns = 6;
 inline constexpr int kColumnFh = 0, kColumnHf = 1, kColumnHp = 2, kColumnNf = 3;
@@ -53,4 +53,4 @@ SurfaceFeatures transfer_features(const geometry::SurfaceMesh& solver_mesh,
                                   const SurfaceFeatures& solver_features,
                                   const geometry::SurfaceMesh& target);
 
-}  // namespace bemshape::apps
+}  // namespace bemshape::analysis

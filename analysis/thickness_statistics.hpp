@@ -21,7 +21,7 @@
 
 #include "geometry/surface_mesh.hpp"
 
-namespace bemshape::apps {
+namespace bemshape::analysis {
 
 struct ThicknessStatistics {
   double minimum = 0, maximum = 0, mean = 0, median = 0, p05 = 0, p95 = 0;  // [model units]
@@ -52,4 +52,4 @@ struct ThinRegion {
 std::vector<ThinRegion> thin_regions(const geometry::SurfaceMesh& mesh,
                                      const Eigen::VectorXd& thickness, double threshold);
 
-}  // namespace bemshape::apps
+}  // namespace bemshape::analysis

@@ -1,0 +1,101 @@
+#include "analysis/boundary_solve.hpp"
+
+#include <cmath>
+#include <new>
+#include <string>
+
+#include "analysis/memory_budget.hpp"
+#include "bem/kernels/transmission_parameters.hpp"
+#include "bem/solve/dense_transmission_solver.hpp"
+#include "core/errors.hpp"
+#include "core/memory.hpp"
+#include "core/number_text.hpp"
+
+namespace bemshape::analysis {
+
+void validate(const SolveOptions& options) {
+  bem::TransmissionParameters::from_shape(options.h0, options.a);  // throws for h0, a
+  if (!(options.sharp_angle_degrees >= 0.0 && options.sharp_angle_degrees < 180.0))
+    throw InputError("--sharp-angle must be in [0, 180) degrees, got " +
+                     number_text(options.sharp_angle_degrees, 3));
+  if (options.max_edge && !(std::isfinite(*options.max_edge) && *options.max_edge > 0.0))
+    throw InputError("--max-edge must be a positive length, got " +
+                     number_text(*options.max_edge, 3));
+  if (!(options.solver.tolerance > 0.0 && options.solver.tolerance < 1.0))
+    throw InputError("--tolerance must be in (0, 1), got " +
+                     number_text(options.solver.tolerance, 3));
+}
+
+BoundarySolve solve_boundary(const geometry::PreparedMesh& input, const SolveOptions& options,
+                             StageTimes& times, const ProgressCallback& progress) {
+  validate(options);
+  const std::string& source = input.report.source;
+  const auto parameters = bem::TransmissionParameters::from_shape(options.h0, options.a);
+  BoundarySolve run;
+  if (options.max_edge) {
+    run.max_edge = *options.max_edge;
+    run.max_edge_rule = "--max-edge";
+  } else {
+    run.max_edge = parameters.default_max_edge();
+    run.max_edge_rule = "default rule 3/kappa = 1.5*a*h0";
+  }
+  // Each stage is announced when it starts: the libraries report their first progress only
+  // after some work, and a display ends the previous stage when a new name arrives.
+  report_progress(progress, "remeshing", 0.0);
+  run.solver_mesh = times.time("refine", [&] {
+    geometry::RemeshingOptions remeshing;
+    remeshing.sharp_angle_degrees = options.sharp_angle_degrees;
+    return geometry::refine_to_edge_length(input.mesh, run.max_edge, remeshing, progress);
+  });
+
+  const Eigen::Index faces = run.solver_mesh.num_faces();
+  const SolverChoice& solver = options.solver;
+  report_progress(progress, "assemble", 0.0);
+  if (solver.method == SolverMethod::hmatrix ||
+      (solver.method == SolverMethod::automatic && faces > kAutoDenseFaces)) {
+    bem::HMatrixSolverOptions hmatrix;
+    hmatrix.tolerance = solver.tolerance;
+    // ε two digits below the Krylov tolerance (bem/solve/hmatrix_transmission_solver.hpp).
+    hmatrix.aca_tolerance = 1e-2 * solver.tolerance;
+    // A single-precision H-matrix perturbs a product by about 4e−7: fine for a residual of
+    // 1e−6, not for a tighter one.
+    hmatrix.single_precision = solver.tolerance >= 1e-6;
+    hmatrix.max_memory_bytes = options.max_memory_bytes;
+    hmatrix.far_field = solver.far_field;
+    try {
+      run.solution =
+          bem::solve_transmission_hmatrix(run.solver_mesh, parameters, hmatrix, progress);
+    } catch (const ResourceError& refused) {
+      // The solver's estimate was over the budget before assembly: name the input too.
+      throw ResourceError(source + ": " + refused.what());
+    } catch (const std::bad_alloc&) {
+      // The estimate checked before assembly was low for this part (ranks, near field).
+      throw ResourceError(source + ": the hierarchical-matrix BEM solver ran out of memory for " +
+                          std::to_string(faces) + " solver faces (edge " +
+                          number_text(run.max_edge, 3) +
+                          "); use a coarser mesh (larger --max-edge)");
+    }
+  } else {
+    // The refusal names a --max-edge that fits; flat walls stay accurate up to κ·h = 5.
+    const DenseSystemRefusal refusal{source,
+                                     faces,
+                                     run.max_edge,
+                                     run.max_edge_rule,
+                                     2.5 * options.a * options.h0,
+                                     options.max_memory_bytes};
+    require_dense_system_fits(refusal);
+    bem::DenseSolverOptions dense;
+    dense.max_memory_bytes = options.max_memory_bytes;
+    try {
+      run.solution = bem::solve_transmission_dense(run.solver_mesh, parameters, dense, progress);
+    } catch (const ResourceError&) {
+      // The machine's free memory dropped between our check and the allocation.
+      refuse_dense_system(refusal, memory_budget_bytes(options.max_memory_bytes));
+    }
+  }
+  times.add("assemble", run.solution.report.assembly_seconds);
+  times.add("solve", run.solution.report.solve_seconds);
+  return run;
+}
+
+}  // namespace bemshape::analysis

@@ -1,0 +1,79 @@
+#pragma once
+// The stages every job that solves shares, after the input mesh is read, validated and
+// repaired (geometry/mesh_preparation.hpp): refine it to the solver's element size
+// (geometry/isotropic_remeshing.hpp), choose the linear solver and solve the transmission
+// problem for s_1, s_2, s_3 (bem/solve/dense_transmission_solver.hpp,
+// bem/solve/hmatrix_transmission_solver.hpp).
+//
+// Element size: the solver mesh's edges are about `max_edge` (none longer than 1.3 times
+// it, geometry::RemeshingOptions::max_edge_ratio) if given, else the default rule
+// TransmissionParameters::default_max_edge() = 3/κ = 1.5·a·h0 [model units].
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "analysis/stage_times.hpp"
+#include "bem/solve/boundary_solution.hpp"
+#include "bem/solve/hmatrix_transmission_solver.hpp"
+#include "core/progress.hpp"
+#include "geometry/isotropic_remeshing.hpp"
+#include "geometry/mesh_preparation.hpp"
+#include "geometry/surface_mesh.hpp"
+
+namespace bemshape::analysis {
+
+/// The linear solver of the transmission problem.
+enum class SolverMethod {
+  automatic,  ///< dense up to kAutoDenseFaces solver faces, the H-matrix path above
+  dense,      ///< LU of the dense system (bem::solve_transmission_dense)
+  hmatrix     ///< H-matrix and GMRES (bem::solve_transmission_hmatrix)
+};
+
+/// Which linear solver runs and how (the command line's --solver, --far-field, --tolerance).
+struct SolverChoice {
+  SolverMethod method = SolverMethod::automatic;
+  /// Relative residual the iterative (H-matrix) path must reach, in (0, 1).
+  double tolerance = 1e-6;
+  /// How the H-matrix path keeps the Laplace far field: automatic (the H-matrix's own
+  /// factors where they fit in memory, the H² form where not), hmatrix or nested (H²).
+  bem::HMatrixSolverOptions::FarField far_field = bem::HMatrixSolverOptions::FarField::automatic;
+};
+
+/// The largest solver mesh SolverMethod::automatic gives to the dense path. Measured on the
+/// ball (bench/bench_fast_path, docs/benchmarks.md): the two paths take the same time near
+/// 1300 faces; the dense path's exact solve is kept a little beyond.
+inline constexpr long kAutoDenseFaces = 2000;
+
+/// The PDE's parameters, the solver mesh and the solver: what every job that solves takes.
+struct SolveOptions {
+  double h0 = 0.0;                 ///< characteristic length [model units], > 0
+  double a = 0.2;                  ///< dimensionless diffusion, > 0
+  std::optional<double> max_edge;  ///< solver mesh edge [model units]; default rule if empty
+  /// Dihedral angle above which an edge is kept as a crease by the remesher [degrees], in
+  /// [0, 180) (geometry::RemeshingOptions::sharp_angle_degrees).
+  double sharp_angle_degrees = geometry::RemeshingOptions{}.sharp_angle_degrees;
+  std::uint64_t max_memory_bytes = 0;  ///< memory the solve may use; 0 = what the machine has
+  SolverChoice solver;
+};
+
+/// Throws InputError naming the first option out of its range (h0, a, sharp angle,
+/// max edge, tolerance), before anything is read or computed.
+void validate(const SolveOptions& options);
+
+/// The solver mesh and the boundary data on it.
+struct BoundarySolve {
+  geometry::SurfaceMesh solver_mesh;  ///< refined mesh the BEM runs on
+  double max_edge = 0.0;              ///< target edge used [model units]
+  std::string max_edge_rule;          ///< "--max-edge" or "default rule 3/kappa = 1.5*a*h0"
+  bem::BoundarySolution solution;     ///< φ, q: #F×3 on solver_mesh
+};
+
+/// Refines `input` and solves on it, timing the stages in `times` as "refine", "assemble"
+/// and "solve". Validates `options` first. Throws InputError for unusable options and
+/// ResourceError (one line naming the input, and for the dense path a --max-edge that fits)
+/// when the system does not fit in memory (analysis/memory_budget.hpp).
+BoundarySolve solve_boundary(const geometry::PreparedMesh& input, const SolveOptions& options,
+                             StageTimes& times, const ProgressCallback& progress = {});
+
+}  // namespace bemshape::analysis

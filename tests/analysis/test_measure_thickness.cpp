@@ -1,0 +1,107 @@
+// analysis/measure_thickness.hpp on the validation ball (R = 0.5, h0 = 0.3, a = 0.2, the
+// default element size: 1280 faces) against its closed form, the same triangles given as a
+// file and as arrays giving the same thickness to the last bit.
+#include <unistd.h>
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <string>
+
+#include "analysis/input_mesh.hpp"
+#include "analysis/measure_thickness.hpp"
+#include "apps/output/stl_writer.hpp"
+#include "geometry/mesh_io.hpp"
+#include "geometry/primitive_meshes.hpp"
+#include "tests/support/closed_forms.hpp"
+
+using namespace bemshape;
+using namespace bemshape::testing;
+
+namespace {
+
+constexpr double kRadius = 0.5;
+const PdeParameters kParameters{0.3, 0.2};
+
+/// The ball as a binary STL file in the temporary folder, removed at the end of the test.
+struct BallFile {
+  std::filesystem::path path = std::filesystem::temp_directory_path() /
+                               ("bemshape_analysis_ball_" + std::to_string(::getpid()) + ".stl");
+  BallFile() {
+    const geometry::SurfaceMesh ball = geometry::make_geodesic_sphere(
+        kRadius, geometry::geodesic_frequency_for_edge(kRadius, 0.09));
+    output::write_binary_stl(path.string(), ball.vertices(), ball.faces());
+  }
+  ~BallFile() {
+    std::error_code ignored;
+    std::filesystem::remove(path, ignored);
+  }
+};
+
+double max_relative_deviation(const Eigen::VectorXd& values, double reference) {
+  return ((values.array() - reference).abs() / reference).maxCoeff();
+}
+
+}  // namespace
+
+TEST_CASE(
+    "measure_thickness: the ball from a file and from arrays, h_p within 2 % of the "
+    "closed form, every face in one thin region") {
+  const BallFile file;
+  const BallSolution ball = ball_solution(kParameters, kRadius);
+  const double h_p = principal_thickness(kParameters, ball.A);
+  const double h_f = paper_thickness(kParameters, inverse_thickness(kParameters, 3.0 * ball.A));
+  analysis::ThicknessOptions options;
+  options.solve.h0 = kParameters.h0;
+  options.solve.a = kParameters.a;
+  const analysis::ThicknessResult from_file = analysis::measure_thickness(file.path, options);
+  CAPTURE(h_p, h_f, from_file.statistics.minimum, from_file.statistics.maximum);
+  CHECK(from_file.boundary.solution.report.method == "dense-lu");
+  CHECK(from_file.measure_column == "h_p");
+  CHECK(from_file.thickness.size() == from_file.boundary.solver_mesh.num_faces());
+  CHECK(max_relative_deviation(from_file.thickness, h_p) < 0.02);
+  CHECK(std::abs(from_file.statistics.median - h_p) < 0.02 * h_p);
+  CHECK(from_file.statistics.unmeasurable_area == 0.0);
+  CHECK(from_file.clamped_faces == 0);
+  CHECK(from_file.regions.empty());
+  // Carried back to every vertex and face of the input.
+  CHECK(from_file.input_features.vertex.rows() == from_file.input.mesh.num_vertices());
+  CHECK(from_file.input_features.face.rows() == from_file.input.mesh.num_faces());
+  const Eigen::MatrixXd& at_vertices = from_file.input_features.vertex;
+  CHECK(max_relative_deviation(at_vertices.col(analysis::kColumnHp), h_p) < 0.02);
+  CHECK(max_relative_deviation(at_vertices.col(analysis::kColumnHf), h_f) < 0.02);
+  std::vector<std::string> stages;
+  for (const auto& [stage, seconds] : from_file.times.stages())
+    stages.push_back(stage);
+  CHECK(stages ==
+        std::vector<std::string>{"read", "refine", "assemble", "solve", "features", "map_back"});
+
+  // The same triangles as arrays, with a check whose threshold every wall is below.
+  const geometry::TriangleSoup soup = geometry::read_triangle_soup(file.path);
+  const geometry::PreparedMesh arrays = analysis::prepare_triangles(soup.vertices, soup.faces);
+  options.min_thickness = 2.0 * h_p;
+  options.map_to_input = false;
+  const analysis::ThicknessResult from_arrays = analysis::measure_thickness(arrays, options);
+  CHECK(from_arrays.thickness == from_file.thickness);
+  CHECK(from_arrays.boundary.solution.phi == from_file.boundary.solution.phi);
+  CHECK(from_arrays.input_features.vertex.size() == 0);
+  REQUIRE(from_arrays.regions.size() == 1);
+  CHECK(static_cast<Eigen::Index>(from_arrays.regions[0].faces) ==
+        from_arrays.boundary.solver_mesh.num_faces());
+  CHECK(from_arrays.regions[0].area == Approx(from_arrays.boundary.solver_mesh.area()));
+}
+
+TEST_CASE("measure_thickness: options out of range are refused before the file is read") {
+  analysis::ThicknessOptions options;
+  options.solve.h0 = 0.3;
+  options.min_thickness = -1.0;
+  CHECK_THROWS_WITH(analysis::measure_thickness(std::string("no such file.stl"), options),
+                    Catch::Contains("--min-thickness"));
+  options.min_thickness.reset();
+  options.solve.sharp_angle_degrees = 180.0;
+  CHECK_THROWS_WITH(analysis::measure_thickness(std::string("no such file.stl"), options),
+                    Catch::Contains("--sharp-angle"));
+  options.solve.sharp_angle_degrees = 30.0;
+  options.solve.h0 = 0.0;
+  CHECK_THROWS_WITH(analysis::measure_thickness(std::string("no such file.stl"), options),
+                    Catch::Contains("h0 must be a positive length"));
+}

@@ -1,0 +1,83 @@
+// analysis/thickness_statistics.hpp: area-weighted quantiles, statistics and thin regions
+// against values worked out by hand on a unit cube (12 triangles of area ½, two per side).
+#include <catch2/catch.hpp>
+
+#include "analysis/thickness_statistics.hpp"
+#include "core/errors.hpp"
+#include "geometry/primitive_meshes.hpp"
+
+using namespace bemshape;
+
+namespace {
+
+/// The unit cube [0, 1]³ as 12 right triangles, two per side.
+geometry::SurfaceMesh unit_cube() {
+  return geometry::make_box(Eigen::Vector3d::Zero(), Eigen::Vector3d::Ones(), 1.0);
+}
+
+/// 0.1 on the bottom side (z = 0), 0.2 on the top (z = 1), 1 elsewhere.
+Eigen::VectorXd bottom_and_top_thin(const geometry::SurfaceMesh& cube) {
+  Eigen::VectorXd thickness = Eigen::VectorXd::Ones(cube.num_faces());
+  for (Eigen::Index f = 0; f < cube.num_faces(); ++f) {
+    const double z = cube.face_centroids()(f, 2);
+    if (z < 1e-12)
+      thickness(f) = 0.1;
+    else if (z > 1.0 - 1e-12)
+      thickness(f) = 0.2;
+  }
+  return thickness;
+}
+
+}  // namespace
+
+TEST_CASE("weighted quantile: interpolated between the area midpoints, clamped at both ends") {
+  const Eigen::VectorXd values = (Eigen::VectorXd(4) << 3.0, 1.0, 4.0, 2.0).finished();
+  const Eigen::VectorXd equal = Eigen::VectorXd::Ones(4);
+  // Midpoints of equal areas at 1/8, 3/8, 5/8, 7/8 of the sorted values 1, 2, 3, 4.
+  CHECK(analysis::weighted_quantile(values, equal, 0.5) == Approx(2.5));
+  CHECK(analysis::weighted_quantile(values, equal, 0.25) == Approx(1.5));
+  CHECK(analysis::weighted_quantile(values, equal, 0.05) == 1.0);
+  CHECK(analysis::weighted_quantile(values, equal, 0.95) == 4.0);
+  // Areas 3 and 1: midpoints at 3/8 and 7/8.
+  const Eigen::VectorXd two = (Eigen::VectorXd(2) << 1.0, 2.0).finished();
+  const Eigen::VectorXd areas = (Eigen::VectorXd(2) << 3.0, 1.0).finished();
+  CHECK(analysis::weighted_quantile(two, areas, 0.5) == Approx(1.25));
+}
+
+TEST_CASE("thickness statistics: unmeasurable faces left out, their area counted") {
+  const geometry::SurfaceMesh cube = unit_cube();
+  REQUIRE(cube.num_faces() == 12);
+  const analysis::ThicknessStatistics s =
+      analysis::thickness_statistics(cube, bottom_and_top_thin(cube), 0.9);
+  CHECK(s.measured_area == Approx(2.0));
+  CHECK(s.unmeasurable_area == Approx(4.0));
+  CHECK(s.minimum == 0.1);
+  CHECK(s.maximum == 0.2);
+  CHECK(s.mean == Approx(0.15));
+  CHECK(s.median == Approx(0.15));  // between 0.1 at 3/8 and 0.2 at 5/8 of the area
+  CHECK(s.min_location.z() == Approx(0.0).margin(1e-12));
+  CHECK_THROWS_AS(analysis::thickness_statistics(cube, Eigen::VectorXd::Ones(12), 0.9), InputError);
+}
+
+TEST_CASE("thin regions: one per edge-connected set below the threshold, thinnest first") {
+  const geometry::SurfaceMesh cube = unit_cube();
+  const std::vector<analysis::ThinRegion> regions =
+      analysis::thin_regions(cube, bottom_and_top_thin(cube), 0.5);
+  REQUIRE(regions.size() == 2);
+  CHECK(regions[0].minimum == 0.1);
+  CHECK(regions[1].minimum == 0.2);
+  for (const analysis::ThinRegion& r : regions) {
+    CHECK(r.faces == 2);
+    CHECK(r.area == Approx(1.0));
+    CHECK(r.centroid.x() == Approx(0.5));
+    CHECK(r.centroid.y() == Approx(0.5));
+  }
+  CHECK(regions[0].centroid.z() == Approx(0.0).margin(1e-12));
+  CHECK(regions[1].centroid.z() == Approx(1.0));
+  CHECK(analysis::thin_regions(cube, bottom_and_top_thin(cube), 0.1).empty());
+  // Above every value: the whole closed surface is one region.
+  const auto all = analysis::thin_regions(cube, bottom_and_top_thin(cube), 2.0);
+  REQUIRE(all.size() == 1);
+  CHECK(all[0].faces == 12);
+  CHECK(all[0].area == Approx(6.0));
+}
