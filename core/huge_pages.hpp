@@ -30,7 +30,7 @@
 // glibc's top pad (M_TOP_PAD) to those 64 MiB, so a new thread heap is made read-write and
 // marked whole when it is created, and the main heap grows in the same steps. Nothing is
 // committed by that: pages are still taken as they are first written. On the same box, three
-// pairs of runs back to back (docs/benchmarks.md, fifteenth session): page faults 0.34–0.65
+// pairs of runs back to back (docs/benchmarks.md, "Heap and huge pages"): page faults 0.34–0.65
 // million → about 4500, run 60.2–63.3 s → 48.6–51.8 s, the same peak; the solve's interior
 // product took 10.1–12.0 s → 5.5–7.0 s, its blocks now read through huge-page translations.
 //

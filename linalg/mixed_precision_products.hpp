@@ -58,7 +58,8 @@ inline Lanes from_register(__m256d v) {
 /// 32 bits by the instruction for it: GCC converts 8- and 16-bit vectors one lane at a time
 /// (measured 3–5 times slower than the single-precision columns). With AVX2 the last step to
 /// four doubles is one instruction too: GCC's generic conversion does it in two halves of two
-/// lanes and joins them (docs/benchmarks.md, thirteenth session, has what both changes save).
+/// lanes and joins them (docs/benchmarks.md, "Narrow-format products", has what both changes
+/// save).
 template <class T>
 inline Lanes widen(const T* from) {
 #if defined(__AVX2__) && !defined(__AVX512F__)

@@ -15,7 +15,7 @@
 // (tests/linalg/test_vector_exponential.cpp); below −708 it is 0 (the true value, under
 // 3.3e−308, is a subnormal), above 709 it is e^709. A NaN stays NaN. On a 2-core Zen 3 an
 // entry costs 1.4–1.7 ns against Eigen's 2.2–2.7 ns (`bench_panel_integrals`;
-// docs/benchmarks.md, eleventh session).
+// docs/benchmarks.md, "Vector exp").
 //
 // Without AVX2 and FMA, and with AVX-512 (where Eigen's exponential runs on eight lanes and
 // was measured as is), this is Eigen's own `exp`, which clamps x below at about −709.4: there

@@ -24,7 +24,7 @@ namespace {
 /// of the block's size; filling the whole block costs a third to a half of that. A block
 /// whose approximation does not pay is then stored from the same entries instead of being
 /// computed a second time. Measured per block class on the 28596-face hollow box
-/// (docs/benchmarks.md, ninth session): at 96–128 panels the whole block already costs as
+/// (docs/benchmarks.md, "H-matrix leaf size and ACA rank limit"): at 96–128 panels the whole block already costs as
 /// much as ACA's rows and columns, hence 64 × 128 (64 panels against 64, two densities).
 constexpr Eigen::Index kDenseFirstEntries = 64 * 128;
 

@@ -12,8 +12,8 @@
 //
 // Why. The H-matrix stores a pair of factors per block, so each cluster's rows carry a
 // basis on every level of blocks they meet; at 10⁶ faces the Laplace row's factors would
-// take about 13 GB of the 20 GB a run may use (docs/benchmarks.md, tenth session). Shared
-// nested bases store each cluster's basis once.
+// take about 13 GB of the 20 GB a run may use (docs/benchmarks.md, "Fast path at 10⁶
+// faces"). Shared nested bases store each cluster's basis once.
 //
 // Construction, one side at a time, depth first over the cluster tree. Entering a cluster t,
 // the cross approximations of t's own blocks on this side are computed (the same ACA and the

@@ -130,8 +130,7 @@ template <class Kernel, class Array>
 /// rule's last point with weight 0. Against whole-rule arrays (every operation a pass over
 /// the rule's values in memory) and Eigen's exponential, this and linalg/vector_exponential.hpp
 /// take the 64-point rule from 2.8 to 1.7 ns per point for Laplace and from 6.2 to 4.6 for
-/// Yukawa (2-core Zen 3, `bench_panel_integrals`; docs/benchmarks.md,
-/// eleventh session).
+/// Yukawa (2-core Zen 3, `bench_panel_integrals`; docs/benchmarks.md, "Panel integrals").
 inline constexpr int kRulePointLanes = 4;
 template <class Kernel>
 RadialSums gauss_radial_sums(const Kernel& kernel, const Eigen::Vector3d& a,

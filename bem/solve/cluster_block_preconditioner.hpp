@@ -16,8 +16,8 @@
 // close to the inverse: the stored factors are the exact factors of blocks perturbed by
 // about 1e−5 relative, far less than the block Jacobi approximation leaves out, and GMRES
 // measures the residual of the double-precision system, so the solution's accuracy does not
-// depend on it. (Single-precision factors, until the eighth session, took twice the memory
-// for the same iteration counts.)
+// depend on it. (Single-precision factors take twice the memory for the same iteration
+// counts: docs/benchmarks.md, "Memory".)
 
 #include <utility>
 #include <vector>

@@ -70,7 +70,7 @@ class ClusterCoarseSpace {
   /// NestedFarField::grouped_sums, its share of A P y from its product with P y: one H²
   /// product per application, which reads the whole H² part once (at 10⁶ faces about a
   /// sixth of the operators' bytes; the preconditioner stage of that run, 15.3 s for 17
-  /// applications, includes it: docs/benchmarks.md, sixteenth session).
+  /// applications, includes it: docs/benchmarks.md, "Fast path at 10⁶ faces").
   template <class Scalar>
   ClusterCoarseSpace(const ClusterTree& tree, const HierarchicalMatrix& laplace,
                      const YukawaNearField<Scalar>& yukawa, const Eigen::VectorXd& half_mass,

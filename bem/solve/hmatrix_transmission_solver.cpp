@@ -34,9 +34,9 @@ double seconds_since(Clock::time_point start) {
 constexpr double kTypicalRank = 16.0;
 
 /// With the far field nested (H²), for the memory estimate only. Measured on spheres of
-/// 100820, 200000 and 397620 faces at the defaults (docs/benchmarks.md, sixteenth session):
-/// 4.2 kB per face of the small blocks' narrow factors, 1.8 kB of bases and 0.6 kB of
-/// couplings, each nearly flat in N. Bytes per face and level of the small blocks' factors
+/// 100820, 200000 and 397620 faces at the defaults (docs/benchmarks.md, "Growth with N"):
+/// 4.2 kB per face of the small blocks' narrow factors, 1.8 kB of bases and 0.6 kB
+/// of couplings, each nearly flat in N. Bytes per face and level of the small blocks' factors
 /// (the 3 levels from leaves of 32 to clusters of 256):
 constexpr double kSmallBlockBytes = 1400.0;
 /// The bases' rank in the estimate's 3·4·k bytes per face (a row and two column rows per
