@@ -3,7 +3,7 @@
 #include <cmath>
 #include <limits>
 
-#include "apps/area_histogram.hpp"
+#include "analysis/area_histogram.hpp"
 #include "apps/report_text.hpp"
 #include "core/errors.hpp"
 
@@ -62,8 +62,8 @@ output::HtmlReport thickness_html_report(const ThicknessHtmlInput& input) {
   report.min_thickness = input.min_thickness;
   for (std::size_t i = 0; i < input.thin_regions.size(); ++i)
     report.regions.push_back(html_region(mesh, input.thin_regions[i], static_cast<int>(i) + 1));
-  const AreaHistogram h = area_histogram(input.face_thickness, mesh.face_areas(),
-                                         kHtmlHistogramBins, input.unmeasurable_from);
+  const analysis::AreaHistogram h = analysis::area_histogram(
+      input.face_thickness, mesh.face_areas(), kHtmlHistogramBins, input.unmeasurable_from);
   report.histogram = {h.edges, h.area, h.other_area};
   report.parameters = input.parameters;
   if (input.min_thickness) {

@@ -1,10 +1,10 @@
-// apps/area_histogram.hpp: bins of round width, every face's area in the bin of its value,
+// analysis/area_histogram.hpp: bins of round width, every face's area in the bin of its value,
 // unmeasurable faces counted apart; the areas add up to the surface's.
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <limits>
 
-#include "apps/area_histogram.hpp"
+#include "analysis/area_histogram.hpp"
 #include "core/errors.hpp"
 
 using namespace bemshape;
@@ -14,7 +14,7 @@ TEST_CASE("area histogram: round bins from a multiple of the width, areas by han
   values << 0.3, 1.7, 2.2, 9.9, 2e6;
   areas << 1, 2, 3, 4, 8;
   // (9.9 − 0.3)/5 = 1.92 → width 2 from 0: [0,2) 1+2, [2,4) 3, [8,10) 4; 2e6 unmeasurable.
-  const apps::AreaHistogram h = apps::area_histogram(values, areas, 5, 1e6);
+  const analysis::AreaHistogram h = analysis::area_histogram(values, areas, 5, 1e6);
   CHECK(h.edges == std::vector<double>{0, 2, 4, 6, 8, 10});
   CHECK(h.area == std::vector<double>{3, 3, 0, 0, 4});
   CHECK(h.other_area == 8);
@@ -29,7 +29,7 @@ TEST_CASE("area histogram: the areas add up, each bin holds its values, at most 
   }
   values(17) = std::numeric_limits<double>::quiet_NaN();
   for (const int bins : {1, 3, 12, 40}) {
-    const apps::AreaHistogram h = apps::area_histogram(values, areas, bins, 1e6);
+    const analysis::AreaHistogram h = analysis::area_histogram(values, areas, bins, 1e6);
     REQUIRE(h.area.size() + 1 == h.edges.size());
     CHECK(int(h.area.size()) <= bins);
     const double width = h.edges[1] - h.edges[0];
@@ -48,14 +48,16 @@ TEST_CASE("area histogram: the areas add up, each bin holds its values, at most 
 
 TEST_CASE("area histogram: equal values, nothing measurable, bad bin count") {
   const Eigen::VectorXd areas = Eigen::VectorXd::Constant(3, 2.0);
-  const apps::AreaHistogram equal = apps::area_histogram(Eigen::VectorXd::Constant(3, 4.0), areas, 12, 1e6);
+  const analysis::AreaHistogram equal =
+      analysis::area_histogram(Eigen::VectorXd::Constant(3, 4.0), areas, 12, 1e6);
   REQUIRE(equal.area.size() == 1);
   CHECK(equal.area[0] == 6.0);
   CHECK(equal.edges[0] <= 4.0);
   CHECK(equal.edges[1] > 4.0);
-  const apps::AreaHistogram none = apps::area_histogram(Eigen::VectorXd::Constant(3, 5e6), areas, 12, 1e6);
+  const analysis::AreaHistogram none =
+      analysis::area_histogram(Eigen::VectorXd::Constant(3, 5e6), areas, 12, 1e6);
   CHECK(none.area.empty());
   CHECK(none.other_area == 6.0);
-  CHECK_THROWS_AS(apps::area_histogram(areas, areas, 0, 1e6), InputError);
-  CHECK_THROWS_AS(apps::area_histogram(areas, Eigen::VectorXd(2), 3, 1e6), InternalError);
+  CHECK_THROWS_AS(analysis::area_histogram(areas, areas, 0, 1e6), InputError);
+  CHECK_THROWS_AS(analysis::area_histogram(areas, Eigen::VectorXd(2), 3, 1e6), InternalError);
 }

@@ -1,4 +1,4 @@
-#include "apps/area_histogram.hpp"
+#include "analysis/area_histogram.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 
 #include "core/errors.hpp"
 
-namespace bemshape::apps {
+namespace bemshape::analysis {
 namespace {
 
 /// Smallest width 1, 2, 2.5 or 5 × 10^m that is at least `w` (> 0). The relative slack keeps
@@ -71,4 +71,4 @@ AreaHistogram area_histogram(const Eigen::Ref<const Eigen::VectorXd>& values,
   return h;
 }
 
-}  // namespace bemshape::apps
+}  // namespace bemshape::analysis

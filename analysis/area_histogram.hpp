@@ -16,7 +16,7 @@
 
 #include <Eigen/Core>
 
-namespace bemshape::apps {
+namespace bemshape::analysis {
 
 struct AreaHistogram {
   std::vector<double> edges;  ///< n + 1 increasing edges [model units]
@@ -30,4 +30,4 @@ AreaHistogram area_histogram(const Eigen::Ref<const Eigen::VectorXd>& values,
                              const Eigen::Ref<const Eigen::VectorXd>& areas, int max_bins,
                              double unmeasurable_from);
 
-}  // namespace bemshape::apps
+}  // namespace bemshape::analysis
