@@ -1,5 +1,6 @@
 #include "geometry/labelled_parts.hpp"
 
+#include <array>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -226,6 +227,81 @@ LabelledPart tapered_wall() {
   return part;
 }
 
+LabelledPart large_tray(int segments) {
+  LabelledPart part;
+  part.name = "large-tray";
+  part.description =
+      "open tray 356 x 356 x 60, walls and floor 3, a 3 x 3 grid of ribs 2 thick and 20 high on "
+      "the floor (centred at 120 and 236 both ways), four solid bosses of diameter 10 and height "
+      "20 in the corner cells";
+  part.nominal_wall = 3.0;
+  constexpr double side = 356.0, height = 60.0, wall = 3.0, rib = 2.0, rib_top = 23.0;
+  // Ribs and bosses start 0.1 inside the floor and walls they stand on, so that the unions
+  // cut through faces instead of touching them.
+  constexpr double overlap = 0.1;
+  constexpr std::array<double, 2> rib_centres = {120.0, 236.0};
+  constexpr std::array<double, 2> boss_centres = {60.0, 296.0};
+  constexpr double boss_radius = 5.0;
+  SurfaceMesh ribs;
+  for (const double c : rib_centres) {
+    const SurfaceMesh along_x = make_box_solid(Vec3(wall - overlap, c - rib / 2, wall - overlap),
+                                               Vec3(side - wall + overlap, c + rib / 2, rib_top));
+    const SurfaceMesh along_y = make_box_solid(Vec3(c - rib / 2, wall - overlap, wall - overlap),
+                                               Vec3(c + rib / 2, side - wall + overlap, rib_top));
+    ribs = ribs.num_faces() == 0 ? along_x : mesh_union(ribs, along_x);
+    ribs = mesh_union(ribs, along_y);
+  }
+  SurfaceMesh mesh = make_box_solid(Vec3(0, 0, 0), Vec3(side, side, height));
+  mesh = mesh_difference(mesh, make_box_solid(Vec3(wall, wall, wall),
+                                              Vec3(side - wall, side - wall, height + 1.0)));
+  mesh = mesh_union(mesh, ribs);
+  for (const double bx : boss_centres)
+    for (const double by : boss_centres) {
+      mesh = mesh_union(mesh, make_faceted_cylinder(Eigen::Vector2d(bx, by), boss_radius,
+                                                    wall - overlap, rib_top, segments));
+      part.features.push_back({"boss at (" + std::to_string(static_cast<int>(bx)) + ", " +
+                                   std::to_string(static_cast<int>(by)) + ")",
+                               WallRole::thick_feature, 2 * boss_radius,
+                               box(Vec3(bx - boss_radius, by - boss_radius, wall),
+                                   Vec3(bx + boss_radius, by + boss_radius, rib_top))});
+    }
+  part.features.push_back({"ribs along x", WallRole::thin_feature, rib,
+                           box(Vec3(wall, rib_centres[0] - rib / 2, wall),
+                               Vec3(side - wall, rib_centres[1] + rib / 2, rib_top))});
+  part.features.push_back({"ribs along y", WallRole::thin_feature, rib,
+                           box(Vec3(rib_centres[0] - rib / 2, wall, wall),
+                               Vec3(rib_centres[1] + rib / 2, side - wall, rib_top))});
+  part.mesh = std::move(mesh);
+  const auto features = part.features;
+  part.label = [features](const Vec3& x, const Vec3& n) {
+    const auto in_rib = [&](double coordinate) {
+      for (const double c : rib_centres)
+        if (std::abs(coordinate - c) < rib / 2 + kOn) return true;
+      return false;
+    };
+    const bool in_cavity = x.x() > wall - kOn && x.x() < side - wall + kOn &&
+                           x.y() > wall - kOn && x.y() < side - wall + kOn;
+    const bool under_rib_height = x.z() < rib_top + kOn;
+    int boss = -1;
+    for (std::size_t i = 0; i < 2; ++i)
+      for (std::size_t j = 0; j < 2; ++j)
+        if (std::hypot(x.x() - boss_centres[i], x.y() - boss_centres[j]) < boss_radius + kOn)
+          boss = static_cast<int>(2 * i + j);
+    const bool rib_x = in_rib(x.y()), rib_y = in_rib(x.x());
+    if (in_cavity && under_rib_height && x.z() > wall - kOn) {
+      if (boss >= 0) return feature(features, boss);
+      if (rib_x && rib_y) return junction();  // where two ribs cross
+      if (rib_x) return feature(features, 4);
+      if (rib_y) return feature(features, 5);
+    }
+    // The floor's underside below a rib or a boss: the wall there is not 3 thick.
+    if (n.z() < -0.99 && (boss >= 0 || (in_cavity && (rib_x || rib_y)))) return junction();
+    if (near(x.z(), height)) return rim(wall);
+    return nominal(wall);
+  };
+  return part;
+}
+
 }  // namespace
 
 const char* to_string(WallRole role) {
@@ -249,7 +325,8 @@ std::vector<WallLabel> LabelledPart::label_faces(const SurfaceMesh& surface) con
 
 std::vector<std::string> labelled_part_names() {
   return {"plate-holes", "l-bracket", "tube",       "boss-tab",
-          "tray",        "bent-bracket", "t-junction", "taper"};
+          "tray",        "bent-bracket", "t-junction", "taper",
+          "large-tray"};
 }
 
 LabelledPart make_labelled_part(const std::string& name, int circle_segments) {
@@ -262,6 +339,7 @@ LabelledPart make_labelled_part(const std::string& name, int circle_segments) {
   if (name == "bent-bracket") return bent_bracket(circle_segments);
   if (name == "t-junction") return filleted_junction(circle_segments);
   if (name == "taper") return tapered_wall();
+  if (name == "large-tray") return large_tray(circle_segments);
   std::string names;
   for (const std::string& n : labelled_part_names()) names += (names.empty() ? "" : ", ") + n;
   throw InputError("unknown labelled part '" + name + "'; known: " + names);

@@ -2,7 +2,9 @@
 // CAD-like parts whose walls are known by design, for measuring what a wall-thickness tool
 // reports against what the part's designer would say: plates with holes, an L-bracket with a
 // thin gusset rib, a tube, a plate with a solid boss and a thin tab, a tray with a thinned
-// pocket, a bent sheet bracket, a filleted T-junction, a tapered wall.
+// pocket, a bent sheet bracket, a filleted T-junction, a tapered wall, and a large
+// thin-walled tray with ribs and bosses (356 x 356 x 60, 3 mm walls: at h0 = 3 its default
+// solver mesh has over a million faces, the size where memory decides whether a run fits).
 //
 // Each part comes with a classifier that labels any point of its surface (with the outward
 // normal there) by the role of the wall it belongs to, so that any triangulation of the part —

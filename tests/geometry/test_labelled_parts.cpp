@@ -33,6 +33,10 @@ TEST_CASE("labelled parts: every part is a clean solid of its design volume") {
       {"tube", (polygon_area(15, 128) - polygon_area(12, 128)) * 80},
       {"tray", 100 * 80 * 30 - 95 * 75 * 27.5 - 20 * 20 * 1.3},
       {"taper", 0.5 * (2 + 6) * 60 * 40},
+      // Box minus cavity, four ribs 350 x 2 x 20 less their four 2 x 2 x 20 crossings counted
+      // twice, four bosses.
+      {"large-tray", 356.0 * 356 * 60 - 350.0 * 350 * 57 + 4 * 350 * 2 * 20 - 4 * 2 * 2 * 20 +
+                         4 * polygon_area(5, 64) * 20},
   };
   for (const std::string& name : labelled_part_names()) {
     INFO(name);
@@ -92,6 +96,29 @@ TEST_CASE("labelled parts: the labels cover the design's walls") {
     CHECK(part.label({0, 20, 0}, {0, 0, -1}).thickness == Approx(2.0));
     CHECK(part.label({30, 20, 0}, {0, 0, -1}).thickness == Approx(4.0));
     CHECK(part.label({60, 20, 6}, {0, 0, 1}).thickness == Approx(6.0));
+  }
+  SECTION("large tray: ribs thin, bosses thick, the floor below them a junction") {
+    const LabelledPart part = make_labelled_part("large-tray");
+    REQUIRE(part.features.size() == 6);
+    CHECK(part.label({100, 119, 10}, {0, -1, 0}).role == WallRole::thin_feature);  // rib side
+    CHECK(part.label({100, 119, 10}, {0, -1, 0}).thickness == 2.0);
+    CHECK(part.label({236, 150, 23}, {0, 0, 1}).feature == 5);  // top of a rib along y
+    CHECK(part.label({120, 236, 23}, {0, 0, 1}).role == WallRole::junction);  // a crossing
+    CHECK(part.label({60, 60, 23}, {0, 0, 1}).role == WallRole::thick_feature);
+    CHECK(part.label({296, 60, 0}, {0, 0, -1}).role == WallRole::junction);  // under a boss
+    CHECK(part.label({150, 150, 3}, {0, 0, 1}).role == WallRole::nominal);    // floor
+    CHECK(part.label({0, 150, 40}, {-1, 0, 0}).role == WallRole::nominal);    // side wall
+    CHECK(part.label({150, 1.5, 60}, {0, 0, 1}).role == WallRole::rim);
+    // The rib features' area: both sides (20 high) and top of four 350-long ribs, less the
+    // crossings (the tops of four 2 x 2 squares and the sides cut out by the crossing ribs)
+    // and the bosses' footprints do not touch them.
+    double rib_area = 0.0;
+    const auto labels = part.label_faces(part.mesh);
+    for (Eigen::Index f = 0; f < part.mesh.num_faces(); ++f)
+      if (labels[static_cast<std::size_t>(f)].role == WallRole::thin_feature)
+        rib_area += part.mesh.face_areas()(f);
+    CHECK(rib_area == Approx(4 * (2 * 350 * 20 + 350 * 2) - 4 * (2 * 2 * 2 * 20 + 2 * 2 * 2))
+                          .epsilon(1e-9));
   }
   CHECK_THROWS_AS(make_labelled_part("no-such-part"), InputError);
 }
