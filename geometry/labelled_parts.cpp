@@ -235,13 +235,13 @@ LabelledPart large_tray(int segments) {
       "the floor (centred at 120 and 236 both ways), four solid bosses of diameter 10 and height "
       "20 in the corner cells";
   part.nominal_wall = 3.0;
-  constexpr double side = 356.0, height = 60.0, wall = 3.0, rib = 2.0, rib_top = 23.0;
+  static constexpr double side = 356.0, height = 60.0, wall = 3.0, rib = 2.0, rib_top = 23.0;
   // Ribs and bosses start 0.1 inside the floor and walls they stand on, so that the unions
   // cut through faces instead of touching them.
-  constexpr double overlap = 0.1;
-  constexpr std::array<double, 2> rib_centres = {120.0, 236.0};
-  constexpr std::array<double, 2> boss_centres = {60.0, 296.0};
-  constexpr double boss_radius = 5.0;
+  static constexpr double overlap = 0.1;
+  static constexpr std::array<double, 2> rib_centres = {120.0, 236.0};
+  static constexpr std::array<double, 2> boss_centres = {60.0, 296.0};
+  static constexpr double boss_radius = 5.0;
   SurfaceMesh ribs;
   for (const double c : rib_centres) {
     const SurfaceMesh along_x = make_box_solid(Vec3(wall - overlap, c - rib / 2, wall - overlap),
