@@ -39,15 +39,21 @@ const char* status_label(MeshProblem::Status status) {
 
 void print_report(const MeshReport& r, std::ostream& out) {
   const Eigen::Vector3d extent = r.bounding_box.extent();
+  const std::string unit = r.unit.empty() ? "file units" : r.unit;
   out << "bemshape check: " << r.source << '\n'
       << "  format          " << r.format << ", " << r.triangles_read << " triangles and "
       << r.vertices_read << " vertices read\n"
+      << "  unit            "
+      << (r.unit.empty() ? "not recorded in the file (lengths in file units)"
+          : !r.converted_from.empty() ? r.unit + " (converted from " + r.converted_from + ")"
+                                      : r.unit + " (as recorded in the file)")
+      << '\n'
       << "  faces           " << r.faces << '\n'
       << "  vertices        " << r.vertices << '\n'
       << "  shells          " << r.shells << '\n'
       << "  cavities        " << r.cavities << '\n'
-      << "  volume          " << number_text(r.volume, 6) << " (file units^3)\n"
-      << "  area            " << number_text(r.area, 6) << " (file units^2)\n"
+      << "  volume          " << number_text(r.volume, 6) << " (" << unit << "^3)\n"
+      << "  area            " << number_text(r.area, 6) << " (" << unit << "^2)\n"
       << "  bounding box    " << point_text(r.bounding_box.min) << " to "
       << point_text(r.bounding_box.max) << ", size " << number_text(extent.x(), 6) << " x "
       << number_text(extent.y(), 6) << " x " << number_text(extent.z(), 6) << '\n'
@@ -73,6 +79,8 @@ nlohmann::json to_json(const MeshReport& r) {
                         {"consequence", p.consequence}});
   return {{"source", r.source},
           {"format", r.format},
+          {"unit", r.unit},
+          {"converted_from", r.converted_from},
           {"triangles_read", r.triangles_read},
           {"vertices_read", r.vertices_read},
           {"faces", r.faces},
@@ -119,7 +127,8 @@ void register_check_command(CLI::App& app, int& exit_code) {
       "the report: faces, vertices, shells, cavities, volume, area, bounding box (in the file's "
       "units), every problem found and every repair. Exit code 0 if the mesh is usable, 2 if "
       "it is refused or unreadable.");
-  check->add_option("INPUT", options->input, "Mesh file: .stl (ASCII or binary), .obj, .off, .ply")
+  check->add_option("INPUT", options->input,
+                    "Mesh file: .stl (ASCII or binary), .obj, .off, .ply, .3mf")
       ->required();
   check->add_option("--report", options->report_path, "Also write the report as JSON to this file");
   check

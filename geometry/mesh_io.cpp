@@ -1,5 +1,9 @@
 #include "geometry/mesh_io.hpp"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <Eigen/Geometry>
 #include <OpenMesh/Core/IO/IOInstances.hh>
 #include <OpenMesh/Core/IO/IOManager.hh>
@@ -19,6 +23,7 @@
 #include <vector>
 
 #include "core/errors.hpp"
+#include "geometry/detail/3mf_reader.hpp"
 #include "geometry/detail/polygon_file_readers.hpp"
 #include "geometry/detail/text_scan.hpp"
 
@@ -150,15 +155,57 @@ class QuietOpenMesh {
   bool err_, log_;
 };
 
+/// "a FIFO (named pipe)", "a socket", ... for the refusal of a non-regular input.
+std::string file_kind(mode_t mode) {
+  if (S_ISDIR(mode))
+    return "a directory";
+  if (S_ISFIFO(mode))
+    return "a FIFO (named pipe)";
+  if (S_ISSOCK(mode))
+    return "a socket";
+  if (S_ISCHR(mode))
+    return "a character device";
+  if (S_ISBLK(mode))
+    return "a block device";
+  return "not a regular file";
+}
+
+[[noreturn]] void refuse_non_regular(const fs::path& path, mode_t mode) {
+  fail(path, "is " + file_kind(mode) + ", not a regular mesh file; give the path of the file itself");
+}
+
+/// The whole file. It is opened with O_NONBLOCK and its type checked on the descriptor
+/// before any read: opening a FIFO without it would block until a writer appears, and the
+/// check on the open descriptor (not only on the path beforehand) also holds if the path is
+/// replaced between the two.
 std::string read_all(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in)
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0)
     fail(path, std::string("cannot be opened for reading: ") + std::strerror(errno));
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  if (in.bad())
-    fail(path, "read error");
-  return buffer.str();
+  struct Closer {
+    int fd;
+    ~Closer() { ::close(fd); }
+  } closer{fd};
+  struct stat info {};
+  if (::fstat(fd, &info) != 0)
+    fail(path, std::string("cannot be examined: ") + std::strerror(errno));
+  if (!S_ISREG(info.st_mode))
+    refuse_non_regular(path, info.st_mode);
+  std::string text;
+  text.reserve(static_cast<std::size_t>(std::max<off_t>(info.st_size, 0)));
+  std::array<char, 1 << 16> buffer{};
+  while (true) {
+    const ssize_t n = ::read(fd, buffer.data(), buffer.size());
+    if (n == 0)
+      break;
+    if (n < 0) {
+      if (errno == EINTR)
+        continue;
+      fail(path, std::string("read error: ") + std::strerror(errno));
+    }
+    text.append(buffer.data(), static_cast<std::size_t>(n));
+  }
+  return text;
 }
 
 /// Checks every `vertex x y z` line of an ASCII STL and that each facet has three of them;
@@ -347,8 +394,10 @@ TriangleSoup read_triangle_soup(const fs::path& path) {
     fail(path, "no such file");
   if (fs::is_directory(status))
     fail(path, "is a directory, not a mesh file");
-  if (!fs::is_regular_file(status))
-    fail(path, "is not a regular file");
+  if (!fs::is_regular_file(status)) {
+    struct stat info {};
+    refuse_non_regular(path, ::stat(path.c_str(), &info) == 0 ? info.st_mode : mode_t{0});
+  }
 
   const std::string extension = lowercase(path.extension().string());
   TriangleSoup soup;
@@ -360,9 +409,11 @@ TriangleSoup read_triangle_soup(const fs::path& path) {
     soup.format = "OFF";
   else if (extension == ".ply")
     soup.format = "PLY";
+  else if (extension == ".3mf")
+    soup.format = "3MF";
   else
     fail(path, "unsupported file extension '" + path.extension().string() +
-                   "': use .stl, .obj, .off or .ply");
+                   "': use .stl, .obj, .off, .ply or .3mf");
 
   const std::string text = read_all(path);
   if (text.empty())
@@ -370,6 +421,8 @@ TriangleSoup read_triangle_soup(const fs::path& path) {
 
   if (soup.format == "STL") {
     read_stl(path, text, soup);
+  } else if (soup.format == "3MF") {
+    detail::read_3mf(path, text, soup);
   } else {
     const detail::PolygonSoup polygons = soup.format == "OBJ"   ? detail::read_obj(path, text)
                                          : soup.format == "OFF" ? detail::read_off(path, text)

@@ -28,6 +28,13 @@ std::string format_number(double x) {
   return buffer;
 }
 
+/// A factor such as 25.4 or 304.8 with all its digits.
+std::string format_factor(double x) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.10g", x);
+  return buffer;
+}
+
 /// "1 open boundary edge" / "12 open boundary edges".
 std::string counted(std::size_t n, const std::string& singular, const std::string& plural) {
   return std::to_string(n) + " " + (n == 1 ? singular : plural);
@@ -76,8 +83,33 @@ PreparedMesh inspect_triangle_soup(const TriangleSoup& soup, const std::string& 
   MeshReport report;
   report.source = source;
   report.format = soup.format;
+  if (soup.build_items > 0)
+    report.format += " (" + counted(soup.build_items, "build item", "build items") + ", " +
+                     counted(soup.mesh_instances, "mesh", "meshes") + " placed)";
   report.triangles_read = static_cast<std::size_t>(soup.faces.rows());
   report.vertices_read = static_cast<std::size_t>(soup.vertices.rows());
+  report.unit = soup.unit;
+  for (const std::string& note : soup.notes)
+    add_problem(report, Status::note, 0, Eigen::Vector3d::Zero(), "reader", note);
+
+  // Unit conversion, only on request and only for a file that records its unit.
+  Eigen::MatrixX3d converted;
+  const Eigen::MatrixX3d* input_vertices = &soup.vertices;
+  if (options.convert_to_millimetres) {
+    if (soup.millimetres_per_unit <= 0.0) {
+      add_problem(report, Status::note, 0, Eigen::Vector3d::Zero(), "no unit to convert",
+                  "the " + soup.format +
+                      " format records no length unit; coordinates are used as stored");
+    } else if (soup.millimetres_per_unit != 1.0) {
+      converted = soup.vertices * soup.millimetres_per_unit;
+      input_vertices = &converted;
+      report.converted_from = soup.unit;
+      report.unit = "millimeter";
+      report.repairs.push_back("converted the coordinates from " + soup.unit +
+                               " to millimeter (x " + format_factor(soup.millimetres_per_unit) +
+                               ")");
+    }
+  }
 
   // What the reader already did.
   if (soup.format.find("STL") != std::string::npos && soup.corners_in_file > report.vertices_read)
@@ -95,7 +127,8 @@ PreparedMesh inspect_triangle_soup(const TriangleSoup& soup, const std::string& 
 
   throw_if_cancelled();
   report_progress(progress, "welding", 0.0);
-  const WeldResult weld = weld_vertices(soup.vertices, soup.faces, options.weld_relative_tolerance);
+  const WeldResult weld =
+      weld_vertices(*input_vertices, soup.faces, options.weld_relative_tolerance);
   report.weld_tolerance = weld.tolerance;
   if (weld.merged_exact > 0)
     report.repairs.push_back("merged " + counted(weld.merged_exact, "vertex", "vertices") +

@@ -46,6 +46,12 @@ struct MeshProblem {
 struct MeshReport {
   std::string source;  // file name, or the name given for in-memory input
   std::string format;
+  /// Length unit of the prepared mesh's coordinates: the unit the file records (3MF:
+  /// "micron", "millimeter", "centimeter", "inch", "foot", "meter"), "millimeter" after a
+  /// conversion, empty if the format records none (lengths are then in the file's units).
+  std::string unit;
+  /// The unit the file recorded if the coordinates were converted to millimetres; else empty.
+  std::string converted_from;
   std::size_t triangles_read = 0;
   std::size_t vertices_read = 0;
   double weld_tolerance = 0.0;  // [model units]
@@ -76,6 +82,10 @@ struct PreparedMesh {
 
 struct MeshPreparationOptions {
   double weld_relative_tolerance = kWeldRelativeTolerance;
+  /// Scale the coordinates to millimetres when the file records its unit (3MF); a file
+  /// without a unit (STL, OBJ, OFF, PLY) is used as stored, with a note. Off by default:
+  /// lengths stay in the file's units, and the report names the unit.
+  bool convert_to_millimetres = false;
 };
 
 /// Runs the pipeline on a file and reports; does not throw for mesh defects (check

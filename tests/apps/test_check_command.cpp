@@ -1,6 +1,9 @@
 // Runs the real `bemshape` executable (path compiled in as BEMSHAPE_EXECUTABLE) on the
 // bad-input corpus and the sample meshes, checking exit codes, the first line of stderr and
 // run time.
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <catch2/catch.hpp>
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -58,6 +61,8 @@ TEST_CASE("unreadable and malformed files are refused with one clear line") {
   expect_refused(bad + "inf_coordinate_binary.stl", "non-finite coordinate");
   expect_refused(bad + "bad_index.obj", "refers to vertex number 99");
   expect_refused(bad + "cube.xyz", "unsupported file extension");
+  expect_refused(bad + "not_a_zip.3mf", "cannot be read as a 3MF package: Could not read ZIP");
+  expect_refused(bad + "bad_index.3mf", "Invalid model node index");
   expect_refused(data + "/does_not_exist.stl", "no such file");
   expect_refused(data + "/bad", "is a directory");
 }
@@ -86,17 +91,21 @@ TEST_CASE("repairable defects are repaired and reported, exit 0") {
   expect_repaired(bad + "quads.obj", "split 6 polygons with more than 3 corners into 12 triangles");
 }
 
-TEST_CASE("an unreadable file is refused (skipped when running as root)") {
+TEST_CASE("an input that cannot be read is refused: a FIFO always, a chmod 000 file unless root") {
+  // A FIFO needs no permissions, so this part runs as root too; the reader must refuse it
+  // without opening it for a blocking read (the check would hang until killed).
+  const fs::path fifo = fs::temp_directory_path() /
+                        ("bemshape_test_fifo_" + std::to_string(::getpid()) + ".stl");
+  fs::remove(fifo);
+  REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
+  expect_refused(fifo.string(), "is a FIFO (named pipe), not a regular mesh file");
+  fs::remove(fifo);
+
   const fs::path file = fs::temp_directory_path() / "bemshape_test_unreadable.stl";
   fs::copy_file(data + "/formats/cube_binary.stl", file, fs::copy_options::overwrite_existing);
   fs::permissions(file, fs::perms::none);
-  if (::geteuid() == 0) {
-    WARN(
-        "running as root: chmod 000 does not stop root from reading, so the unreadable-file "
-        "case cannot be produced here");
-  } else {
+  if (::geteuid() != 0)  // chmod 000 does not stop root from reading
     expect_refused(file.string(), "cannot be opened for reading");
-  }
   fs::permissions(file, fs::perms::owner_all);
   fs::remove(file);
 }

@@ -1,3 +1,6 @@
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <catch2/catch.hpp>
 #include <chrono>
 #include <filesystem>
@@ -101,6 +104,21 @@ TEST_CASE("unreadable inputs are input errors naming the file and the problem") 
   CHECK_THAT(message_of(data + "/bad/bad_index.obj"), Catch::Contains("vertex number 99"));
   CHECK_THAT(message_of(data + "/bad/not_a_mesh.stl"), Catch::Contains("not an ASCII STL"));
   CHECK_THAT(message_of(data + "/bad/empty.stl"), Catch::StartsWith(data + "/bad/empty.stl: "));
+}
+
+TEST_CASE("a FIFO given as the input is refused at once, also when running as root") {
+  // Opening a FIFO for reading blocks until a writer appears; the reader must neither block
+  // nor read it. This case needs no permissions, so it runs as root too.
+  const auto fifo = std::filesystem::temp_directory_path() /
+                    ("bemshape_test_fifo_" + std::to_string(::getpid()) + ".stl");
+  std::filesystem::remove(fifo);
+  REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
+  const auto start = std::chrono::steady_clock::now();
+  const std::string message = message_of(fifo.string());
+  std::filesystem::remove(fifo);
+  CHECK_THAT(message, Catch::StartsWith(fifo.string() + ": is a FIFO (named pipe), not a regular"));
+  CHECK(std::chrono::steady_clock::now() - start < std::chrono::seconds(1));
+  CHECK_THAT(message_of("/dev/null"), Catch::Contains("is a character device"));
 }
 
 TEST_CASE("a small file claiming billions of triangles is rejected without reading them") {
