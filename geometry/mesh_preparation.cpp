@@ -1,6 +1,7 @@
 #include "geometry/mesh_preparation.hpp"
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cstdio>
 #include <sstream>
 
@@ -9,7 +10,9 @@
 #include "geometry/mesh_orientation.hpp"
 #include "geometry/mesh_repair.hpp"
 #include "geometry/mesh_validation.hpp"
+#include "geometry/nonmanifold_split.hpp"
 #include "geometry/self_intersection.hpp"
+#include "geometry/surface_repair.hpp"
 
 namespace bemshape::geometry {
 namespace {
@@ -146,8 +149,20 @@ PreparedMesh inspect_triangle_soup(const TriangleSoup& soup, const std::string& 
   report_progress(progress, "validation", 0.2);
   const MeshValidation before = validate_mesh(weld.vertices, weld.faces);
   const FaceCleanup cleanup = remove_degenerate_faces(weld.vertices, weld.faces);
-  const ConsistentOrientation consistent = orient_consistently(cleanup.vertices, cleanup.faces);
-  const MeshValidation after = validate_mesh(cleanup.vertices, consistent.faces);
+  const double diagonal =
+      cleanup.vertices.rows() > 0
+          ? (cleanup.vertices.colwise().maxCoeff() - cleanup.vertices.colwise().minCoeff()).norm()
+          : 0.0;
+  const double repair_length = options.repair_length > 0.0
+                                   ? options.repair_length
+                                   : kRepairRelativeLength * diagonal;
+  report.repair_length = repair_length;
+  const std::string tolerance =
+      "the repair length " + format_number(repair_length) +
+      (options.repair_length > 0.0
+           ? ""
+           : " (" + format_number(100.0 * kRepairRelativeLength) +
+                 " % of the bounding-box diagonal)");
 
   if (before.collapsed_faces)
     add_problem(report, Status::repaired, before.collapsed_faces.count,
@@ -177,19 +192,123 @@ PreparedMesh inspect_triangle_soup(const TriangleSoup& soup, const std::string& 
                     format_number(kNeedleRelativeHeight) + " of the longest edge)",
                 "valid geometry, but too thin for boundary elements; remesh the surface "
                 "(refine_to_edge_length) before a BEM solve");
+  if (cleanup.collapsed_removed + cleanup.duplicates_removed + cleanup.zero_area_removed > 0)
+    report.repairs.push_back(
+        "removed " + std::to_string(cleanup.collapsed_removed + cleanup.duplicates_removed) +
+        " collapsed or duplicate faces and " + std::to_string(cleanup.zero_area_removed) +
+        " zero-area faces");
+
+  // Cut non-manifold edges and vertices apart (the surface does not move).
+  Eigen::MatrixX3d V = cleanup.vertices;
+  Eigen::MatrixX3i F = cleanup.faces;
+  NonmanifoldSplit split;
+  if (options.repair_surface) {
+    split = split_nonmanifold(V, F);
+    if (split.edges_split > 0) {
+      add_problem(report, Status::repaired, split.edges_split, split.first_edge,
+                  counted(split.edges_split, "non-manifold edge", "non-manifold edges") +
+                      " (shared by more than two faces)",
+                  "split: the faces around each edge were paired by angle, so bodies that "
+                  "touch along an edge are separated; the surface is unchanged" +
+                      std::string(split.faces_unpaired > 0
+                                      ? " (" + counted(split.faces_unpaired, "face", "faces") +
+                                            " without a partner kept an open edge)"
+                                      : "") +
+                      std::string(split.edges_crossing > 0
+                                      ? "; along " +
+                                            counted(split.edges_crossing, "edge", "edges") +
+                                            " (first at " + format_point(split.first_crossing) +
+                                            ") bodies pass through each other and are united "
+                                            "below"
+                                      : ""));
+      report.repairs.push_back("split " +
+                               counted(split.edges_split, "non-manifold edge", "non-manifold edges") +
+                               " (first at " + format_point(split.first_edge) +
+                               ") by pairing the faces around each by angle");
+    }
+    if (before.nonmanifold_vertices && split.vertices_split > 0) {
+      add_problem(report, Status::repaired, before.nonmanifold_vertices.count,
+                  before.nonmanifold_vertices.first,
+                  counted(before.nonmanifold_vertices.count, "non-manifold vertex",
+                          "non-manifold vertices") +
+                      " (surface sheets meet only at a point)",
+                  "duplicated, one copy per sheet; the surface is unchanged");
+    }
+    if (split.copies_added > 0)
+      report.repairs.push_back("duplicated " +
+                               counted(split.vertices_split, "vertex", "vertices") +
+                               " shared by separate fans of faces into " +
+                               std::to_string(split.vertices_split + split.copies_added) +
+                               " copies (first at " + format_point(split.first_vertex) + ")");
+    V = split.vertices;
+    F = split.faces;
+  }
+  ConsistentOrientation consistent = orient_consistently(V, F);
   if (consistent.orientable && before.inconsistent_edges)
     add_problem(
         report, Status::repaired, before.inconsistent_edges.count, before.inconsistent_edges.first,
         counted(before.inconsistent_edges.count, "edge", "edges") +
             " between faces of opposite orientation",
         "made consistent by reversing " + counted(consistent.faces_flipped, "face", "faces"));
+  if (consistent.orientable && consistent.faces_flipped > 0)
+    report.repairs.push_back("reversed " + counted(consistent.faces_flipped, "face", "faces") +
+                             " to make neighbouring faces agree");
+  F = consistent.faces;
+
+  // Stitch, drop loose open pieces, fill small holes.
+  HoleClosing holes;
+  if (options.repair_surface && consistent.orientable && F.rows() > 0) {
+    throw_if_cancelled();
+    report_progress(progress, "holes", 0.3);
+    holes = close_small_holes(V, F, repair_length);
+    V = std::move(holes.vertices);
+    F = std::move(holes.faces);
+    if (holes.edges_stitched > 0)
+      report.repairs.push_back("stitched " +
+                               counted(holes.edges_stitched, "pair", "pairs") +
+                               " of open edges with coinciding end points");
+    if (!holes.pieces_removed.empty()) {
+      double largest = 0.0;
+      for (const SurfaceRepairStep& step : holes.pieces_removed)
+        largest = std::max(largest, step.size);
+      add_problem(report, Status::repaired, holes.pieces_removed.size(),
+                  holes.pieces_removed.front().where,
+                  counted(holes.pieces_removed.size(), "loose open piece", "loose open pieces") +
+                      " up to " + format_number(largest) + " across",
+                  "removed: each is at most " + tolerance + " across and encloses no solid");
+      for (const SurfaceRepairStep& step : holes.pieces_removed)
+        report.repairs.push_back(step.description);
+    }
+    if (!holes.holes_filled.empty()) {
+      double largest = 0.0;
+      for (const SurfaceRepairStep& step : holes.holes_filled)
+        largest = std::max(largest, step.size);
+      add_problem(report, Status::repaired, holes.holes_filled.size(),
+                  holes.holes_filled.front().where,
+                  counted(holes.holes_filled.size(), "hole", "holes") + " up to " +
+                      format_number(largest) + " across",
+                  "filled: each rim is at most " + tolerance +
+                      " across; the patches continue the surface smoothly (flat on a flat rim)");
+      for (const SurfaceRepairStep& step : holes.holes_filled)
+        report.repairs.push_back(step.description);
+    }
+  }
+  MeshValidation after = validate_mesh(V, F);
 
   // Refusals.
-  if (after.boundary_edges)
+  if (after.boundary_edges) {
+    std::string why = "the surface is not closed; close the holes in the CAD export (export a "
+                      "closed solid, not a surface)";
+    if (holes.holes_left > 0)
+      why = counted(holes.holes_left, "hole", "holes") + " up to " +
+            format_number(holes.largest_left) + " across" +
+            (holes.largest_left > repair_length ? ", larger than " + tolerance
+                                                : " (" + holes.why_left + ")") +
+            ": " + why;
     add_problem(report, Status::refused, after.boundary_edges.count, after.boundary_edges.first,
                 counted(after.boundary_edges.count, "open boundary edge", "open boundary edges"),
-                "the surface is not closed; close the holes in the CAD export (export a closed "
-                "solid, not a surface)");
+                why);
+  }
   if (after.nonmanifold_edges)
     add_problem(report, Status::refused, after.nonmanifold_edges.count,
                 after.nonmanifold_edges.first,
@@ -208,13 +327,13 @@ PreparedMesh inspect_triangle_soup(const TriangleSoup& soup, const std::string& 
                 "its faces cannot be oriented consistently, so it bounds no solid; re-export "
                 "the part as a closed solid");
   if (cleanup.zero_area_left > 0)
-    add_problem(report, Status::refused, cleanup.zero_area_left, after.zero_area_faces.first,
+    add_problem(report, Status::refused, cleanup.zero_area_left, before.zero_area_faces.first,
                 counted(cleanup.zero_area_left, "zero-area face", "zero-area faces") +
                     " that cannot be removed",
                 "they lie on a hole or a non-manifold edge; fix the surface in CAD");
   // Every face collapsed (e.g. all corners welded together): nothing is left to bound a
   // solid, and an empty mesh would pass every rule above (found by fuzz/fuzz_stl).
-  if (consistent.faces.rows() == 0)
+  if (F.rows() == 0)
     add_problem(report, Status::refused, static_cast<std::size_t>(weld.faces.rows()),
                 before.collapsed_faces.first,
                 "no face left after removing " +
@@ -227,11 +346,58 @@ PreparedMesh inspect_triangle_soup(const TriangleSoup& soup, const std::string& 
 
   throw_if_cancelled();
   report_progress(progress, "self-intersections", 0.4);
-  bool closed = after.closed_manifold() && consistent.orientable && cleanup.zero_area_left == 0;
+  bool closed = after.closed_manifold() && consistent.orientable && cleanup.zero_area_left == 0 &&
+                F.rows() > 0;
   if (!after.nonmanifold_edges && !after.nonmanifold_vertices && consistent.orientable &&
-      consistent.faces.rows() > 0) {
-    const SelfIntersections si = find_self_intersections(cleanup.vertices, consistent.faces);
-    if (si.pairs > 0) {
+      F.rows() > 0) {
+    SelfIntersections si = find_self_intersections(V, F);
+    if ((si.pairs > 0 || !split.crossing_edges.empty()) && options.repair_surface && closed) {
+      IntersectionRepair fix =
+          resolve_self_intersections(V, F, si, repair_length, split.crossing_edges);
+      if (!fix.clusters_replaced.empty()) {
+        double largest = 0.0;
+        for (const SurfaceRepairStep& step : fix.clusters_replaced)
+          largest = std::max(largest, step.size);
+        add_problem(report, Status::repaired, fix.pairs_within_shells, si.first,
+                    counted(fix.pairs_within_shells, "pair", "pairs") +
+                        " of intersecting faces within a shell",
+                    "cut out and refilled in " +
+                        counted(fix.clusters_replaced.size(), "region", "regions") + " up to " +
+                        format_number(largest) + " across (at most " + tolerance +
+                        "); volume changed by " + format_number(fix.volume_change));
+        for (const SurfaceRepairStep& step : fix.clusters_replaced)
+          report.repairs.push_back(step.description);
+      }
+      if (!fix.unions.empty()) {
+        add_problem(report, Status::repaired, fix.unions.size(), fix.unions.front().where,
+                    counted(fix.unions.size(), "group", "groups") + " of overlapping bodies",
+                    "replaced by the boundary of their union: the solid is the set of points "
+                    "inside any body (the positive fill rule of 3MF), which is unchanged");
+        for (const SurfaceRepairStep& step : fix.unions)
+          report.repairs.push_back(step.description);
+      }
+      V = std::move(fix.vertices);
+      F = std::move(fix.faces);
+      si = std::move(fix.left);
+      if (si.pairs > 0) {
+        closed = false;
+        add_problem(report, Status::refused, si.pairs, si.first,
+                    counted(si.pairs, "pair", "pairs") + " of intersecting faces",
+                    "not repaired: " + fix.why_left + " (" + tolerance +
+                        "); unite the bodies (boolean union) or separate them in CAD");
+      }
+      // The repairs must leave a closed, consistently oriented surface; check it again.
+      consistent = orient_consistently(V, F);
+      F = consistent.faces;
+      after = validate_mesh(V, F);
+      if (!after.closed_manifold() || !consistent.orientable) {
+        closed = false;
+        add_problem(report, Status::refused, after.boundary_edges.count + after.nonmanifold_edges.count,
+                    after.boundary_edges ? after.boundary_edges.first : after.nonmanifold_edges.first,
+                    "the self-intersection repair left an open or non-manifold surface",
+                    "unite the bodies (boolean union) or remove the crossing in CAD");
+      }
+    } else if (si.pairs > 0) {
       closed = false;
       add_problem(report, Status::refused, si.pairs, si.first,
                   counted(si.pairs, "pair", "pairs") + " of intersecting faces",
@@ -245,10 +411,9 @@ PreparedMesh inspect_triangle_soup(const TriangleSoup& soup, const std::string& 
 
   throw_if_cancelled();
   report_progress(progress, "orientation", 0.8);
-  Eigen::MatrixX3i faces = consistent.faces;
   if (closed) {
-    const VolumeOrientation oriented = orient_to_bound_volume(cleanup.vertices, faces);
-    faces = oriented.faces;
+    const VolumeOrientation oriented = orient_to_bound_volume(V, F);
+    F = oriented.faces;
     report.cavities = oriented.cavities;
     if (oriented.shells_flipped > 0) {
       Eigen::Vector3d first = Eigen::Vector3d::Zero();
@@ -262,6 +427,8 @@ PreparedMesh inspect_triangle_soup(const TriangleSoup& soup, const std::string& 
                       " inside out (normals pointing into the solid)",
                   "reversed " + counted(oriented.faces_flipped, "face", "faces") +
                       " so that every shell bounds the solid");
+      report.repairs.push_back("reversed " + counted(oriented.faces_flipped, "face", "faces") +
+                               " so that every shell bounds the solid");
     }
     std::size_t flat = 0;
     Eigen::Vector3d first = Eigen::Vector3d::Zero();
@@ -274,25 +441,11 @@ PreparedMesh inspect_triangle_soup(const TriangleSoup& soup, const std::string& 
                   "a closed surface folded flat onto itself bounds no solid; remove it in CAD");
   }
 
-  {
-    if (cleanup.collapsed_removed + cleanup.duplicates_removed + cleanup.zero_area_removed > 0)
-      report.repairs.push_back(
-          "removed " + std::to_string(cleanup.collapsed_removed + cleanup.duplicates_removed) +
-          " collapsed or duplicate faces and " + std::to_string(cleanup.zero_area_removed) +
-          " zero-area faces");
-    if (consistent.orientable && consistent.faces_flipped > 0)
-      report.repairs.push_back("reversed " + counted(consistent.faces_flipped, "face", "faces") +
-                               " to make neighbouring faces agree");
-    for (const MeshProblem& p : report.problems)
-      if (p.status == Status::repaired && p.what.find("inside out") != std::string::npos)
-        report.repairs.push_back(p.consequence);
-  }
-
-  PreparedMesh result{SurfaceMesh(cleanup.vertices, faces), std::move(report)};
+  PreparedMesh result{SurfaceMesh(std::move(V), std::move(F)), std::move(report)};
   MeshReport& r = result.report;
   r.faces = static_cast<std::size_t>(result.mesh.num_faces());
   r.vertices = static_cast<std::size_t>(result.mesh.num_vertices());
-  r.shells = after.shells;
+  shell_labels(result.mesh.faces(), &r.shells);
   r.volume = result.mesh.signed_volume();
   r.area = result.mesh.area();
   r.bounding_box = result.mesh.bounding_box();

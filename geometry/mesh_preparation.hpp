@@ -4,11 +4,15 @@
 //   1. read the file into a triangle soup (mesh_io.hpp; polygons fan-triangulated);
 //   2. weld coincident vertices, exactly and within kWeldRelativeTolerance·diagonal;
 //   3. validate (mesh_validation.hpp) and repair what carries no geometry: collapsed,
-//      duplicate and zero-area faces (mesh_repair.hpp), then inconsistent orientation;
-//   4. refuse what cannot be repaired safely: holes, non-manifold edges and vertices,
-//      zero-area faces on a hole, non-orientable shells, self-intersections, shells that
-//      enclose no volume;
-//   5. orient every shell to bound the solid (outer skins outward, cavity walls inward).
+//      duplicate and zero-area faces (mesh_repair.hpp);
+//   4. split non-manifold edges and vertices (nonmanifold_split.hpp), orient consistently;
+//   5. stitch coinciding open edges, remove loose open pieces and fill holes at most the
+//      repair length ℓ across (surface_repair.hpp);
+//   6. find self-intersections; cut out and refill clusters within a shell at most ℓ across,
+//      unite overlapping bodies (surface_repair.hpp);
+//   7. refuse what is left: larger holes and self-intersections, non-orientable shells,
+//      zero-area faces on a hole, shells that enclose no volume;
+//   8. orient every shell to bound the solid (outer skins outward, cavity walls inward).
 //
 // Nothing is guessed: every change is listed in MeshReport::repairs, every defect in
 // MeshReport::problems with its count and the position of its first occurrence.
@@ -55,6 +59,9 @@ struct MeshReport {
   std::size_t triangles_read = 0;
   std::size_t vertices_read = 0;
   double weld_tolerance = 0.0;  // [model units]
+  /// The repair length ℓ used [model units]: holes, loose pieces and self-intersecting
+  /// regions at most this large were repaired, larger ones refused.
+  double repair_length = 0.0;
 
   // The prepared mesh (meaningful in full only if usable()).
   std::size_t faces = 0;
@@ -82,6 +89,15 @@ struct PreparedMesh {
 
 struct MeshPreparationOptions {
   double weld_relative_tolerance = kWeldRelativeTolerance;
+  /// Repair holes, non-manifold edges and vertices, loose pieces, small self-intersections
+  /// and overlapping bodies (surface_repair.hpp, nonmanifold_split.hpp); false refuses them
+  /// all, as a strict CAD check would.
+  bool repair_surface = true;
+  /// The repair length ℓ [model units]: the largest hole, loose piece or self-intersecting
+  /// region that is repaired. 0 means kRepairRelativeLength (2 %) of the bounding-box
+  /// diagonal; a caller that knows the length the analysis resolves (h0, the element size)
+  /// passes it.
+  double repair_length = 0.0;
   /// Scale the coordinates to millimetres when the file records its unit (3MF); a file
   /// without a unit (STL, OBJ, OFF, PLY) is used as stored, with a note. Off by default:
   /// lengths stay in the file's units, and the report names the unit.

@@ -6,12 +6,12 @@ namespace bemshape::geometry {
 
 SelfIntersections find_self_intersections(const Eigen::MatrixX3d& vertices,
                                           const Eigen::MatrixX3i& faces) {
-  const detail::CgalSelfIntersections found = detail::cgal_self_intersections(vertices, faces);
+  detail::CgalSelfIntersections found = detail::cgal_self_intersections(vertices, faces);
   SelfIntersections result;
   result.pairs = found.pairs;
-  result.faces_not_tested = found.faces_not_tested;
-  if (found.pairs > 0) {
-    const Eigen::Index f = found.first.first;
+  result.face_pairs = std::move(found.list);
+  if (!result.face_pairs.empty()) {
+    const Eigen::Index f = result.face_pairs.front().first;
     result.first =
         (vertices.row(faces(f, 0)) + vertices.row(faces(f, 1)) + vertices.row(faces(f, 2)))
             .transpose() /

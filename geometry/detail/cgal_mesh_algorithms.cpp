@@ -1,4 +1,5 @@
-// The one translation unit that compiles CGAL's Polygon_mesh_processing (slow to compile).
+// One of the translation units that compile CGAL's Polygon_mesh_processing (slow to compile):
+// self-intersections and remeshing.
 #include "geometry/detail/cgal_mesh_algorithms.hpp"
 
 #include <CGAL/AABB_traits.h>
@@ -7,8 +8,11 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/detect_features.h>
 #include <CGAL/Polygon_mesh_processing/remesh.h>
-#include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/Surface_mesh.h>
+#include <CGAL/box_intersection_d.h>
+#include <algorithm>
+#include <array>
+#include <map>
 #include <vector>
 
 #include "core/errors.hpp"
@@ -68,32 +72,81 @@ void to_arrays(const Mesh& mesh, Eigen::MatrixX3d& vertices, Eigen::MatrixX3i& f
   }
 }
 
-/// Counts intersecting pairs, keeping only the first (memory stays O(1) however many).
-struct PairCounter {
-  std::size_t* count;
-  std::pair<FaceIndex, FaceIndex>* first;
-  PairCounter& operator*() { return *this; }
-  PairCounter& operator++() { return *this; }
-  PairCounter operator++(int) { return *this; }
-  PairCounter& operator=(const std::pair<FaceIndex, FaceIndex>& pair) {
-    if ((*count)++ == 0)
-      *first = pair;
-    return *this;
-  }
-};
-
 }  // namespace
 
 CgalSelfIntersections cgal_self_intersections(const Eigen::MatrixX3d& vertices,
                                               const Eigen::MatrixX3i& faces) {
   CgalSelfIntersections result;
-  std::vector<Eigen::Index> face_of;
-  const Mesh mesh = to_surface_mesh(vertices, faces, face_of, result.faces_not_tested);
-  std::pair<FaceIndex, FaceIndex> first;
-  PMP::self_intersections(mesh, PairCounter{&result.pairs, &first});
-  if (result.pairs > 0)
-    result.first = {face_of[static_cast<std::size_t>(first.first.idx())],
-                    face_of[static_cast<std::size_t>(first.second.idx())]};
+  // Vertices with equal coordinates get one identity (the first such vertex).
+  std::map<std::array<double, 3>, int> identity_of;
+  std::vector<int> identity(static_cast<std::size_t>(vertices.rows()));
+  std::vector<Point> points(static_cast<std::size_t>(vertices.rows()));
+  for (Eigen::Index v = 0; v < vertices.rows(); ++v) {
+    const std::array<double, 3> key{vertices(v, 0), vertices(v, 1), vertices(v, 2)};
+    identity[static_cast<std::size_t>(v)] =
+        identity_of.try_emplace(key, static_cast<int>(v)).first->second;
+    points[static_cast<std::size_t>(v)] = Point(key[0], key[1], key[2]);
+  }
+  auto corner = [&](Eigen::Index f, int k) { return faces(f, k); };
+  auto same = [&](int a, int b) {
+    return identity[static_cast<std::size_t>(a)] == identity[static_cast<std::size_t>(b)];
+  };
+  auto p = [&](int v) -> const Point& { return points[static_cast<std::size_t>(v)]; };
+
+  auto intersect = [&](Eigen::Index f, Eigen::Index g) {
+    // Corners of g matching corner k of f, by identity.
+    int match[3] = {-1, -1, -1};
+    int shared = 0;
+    for (int k = 0; k < 3; ++k)
+      for (int l = 0; l < 3; ++l)
+        if (same(corner(f, k), corner(g, l))) {
+          match[k] = l;
+          ++shared;
+          break;
+        }
+    if (shared >= 3)
+      return true;  // the same triangle twice
+    if (shared == 2) {
+      // Shared edge (corners i, j of f); r and s are the third corners of f and g.
+      int i = 0;
+      while (match[i] < 0 || match[(i + 1) % 3] < 0)
+        ++i;
+      const int r = corner(f, (i + 2) % 3);
+      const int l = 3 - match[i] - match[(i + 1) % 3];
+      const int s = corner(g, l);
+      const Point &a = p(corner(f, i)), &b = p(corner(f, (i + 1) % 3));
+      return CGAL::coplanar(a, b, p(r), p(s)) &&
+             CGAL::coplanar_orientation(a, b, p(r), p(s)) == CGAL::POSITIVE;
+    }
+    const Kernel::Triangle_3 tf(p(corner(f, 0)), p(corner(f, 1)), p(corner(f, 2)));
+    const Kernel::Triangle_3 tg(p(corner(g, 0)), p(corner(g, 1)), p(corner(g, 2)));
+    if (shared == 1) {
+      int i = 0;
+      while (match[i] < 0)
+        ++i;
+      const int j = match[i];
+      const Kernel::Segment_3 opposite_f(p(corner(f, (i + 1) % 3)), p(corner(f, (i + 2) % 3)));
+      const Kernel::Segment_3 opposite_g(p(corner(g, (j + 1) % 3)), p(corner(g, (j + 2) % 3)));
+      return CGAL::do_intersect(tf, opposite_g) || CGAL::do_intersect(tg, opposite_f);
+    }
+    return CGAL::do_intersect(tf, tg);
+  };
+
+  using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 3, Eigen::Index>;
+  std::vector<Box> boxes;
+  boxes.reserve(static_cast<std::size_t>(faces.rows()));
+  for (Eigen::Index f = 0; f < faces.rows(); ++f)
+    boxes.emplace_back(p(corner(f, 0)).bbox() + p(corner(f, 1)).bbox() + p(corner(f, 2)).bbox(),
+                       f);
+  CGAL::box_self_intersection_d(boxes.begin(), boxes.end(), [&](const Box& x, const Box& y) {
+    const Eigen::Index f = std::min(x.info(), y.info()), g = std::max(x.info(), y.info());
+    if (!intersect(f, g))
+      return;
+    ++result.pairs;
+    if (result.list.size() < kMaxListedIntersections)
+      result.list.emplace_back(f, g);
+  });
+  std::sort(result.list.begin(), result.list.end());
   return result;
 }
 

@@ -7,20 +7,30 @@
 #include <Eigen/Core>
 #include <cstddef>
 #include <utility>
+#include <vector>
 
 namespace bemshape::geometry::detail {
 
 struct CgalSelfIntersections {
-  /// Pairs of faces whose interiors intersect (sharing a vertex or edge is not counted).
+  /// Pairs of faces that intersect other than in a shared vertex or edge.
   std::size_t pairs = 0;
-  /// Face indices of the first pair (−1 if none).
-  std::pair<Eigen::Index, Eigen::Index> first{-1, -1};
-  /// Faces that could not be put into a halfedge mesh (non-manifold): not tested.
-  std::size_t faces_not_tested = 0;
+  /// The pairs (face indices, smaller first), in the order found; at most
+  /// kMaxListedIntersections of them.
+  std::vector<std::pair<Eigen::Index, Eigen::Index>> list;
 };
 
-/// CGAL::Polygon_mesh_processing::self_intersections on a consistently oriented mesh
-/// (exact predicates).
+/// Enough pairs to locate and group every defect a repair could address (16 MB); a mesh
+/// with more intersecting pairs is refused whatever they are.
+inline constexpr std::size_t kMaxListedIntersections = 1'000'000;
+
+/// Every pair of intersecting faces of a triangle soup, by the rules of
+/// CGAL::Polygon_mesh_processing::self_intersections (exact predicates): faces sharing an
+/// edge intersect only if they are coplanar and on the same side of it (a fold), faces
+/// sharing a vertex only if an opposite edge meets the other face, other faces if they
+/// meet at all. "Shared" is decided by position, not by index: copies of one vertex made by
+/// splitting a non-manifold edge or vertex count as the same vertex, so two bodies that
+/// touch along an edge or at a point do not intersect. Box intersection (CGAL
+/// box_self_intersection_d) finds the candidate pairs.
 CgalSelfIntersections cgal_self_intersections(const Eigen::MatrixX3d& vertices,
                                               const Eigen::MatrixX3i& faces);
 

@@ -1,4 +1,6 @@
+#include <algorithm>
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <numbers>
 #include <string>
 
@@ -74,8 +76,10 @@ TEST_CASE("teapot: refused for its 64 open boundary edges") {
       Catch::Contains("64 open boundary edges (first at ") && Catch::Contains("close the holes"));
 }
 
-TEST_CASE("box.STL: ten closed parts, refused because the parts overlap each other") {
-  const PreparedMesh p = inspect_mesh_file(data + "/meshes/box.STL");
+TEST_CASE("box.STL: ten closed parts that overlap, refused as they are, united by repair") {
+  MeshPreparationOptions strict;
+  strict.repair_surface = false;
+  const PreparedMesh p = inspect_mesh_file(data + "/meshes/box.STL", strict);
   CHECK(p.report.shells == 10);
   const MeshValidation v = validate_mesh(p.mesh.vertices(), p.mesh.faces());
   CHECK(v.closed_manifold());
@@ -83,6 +87,7 @@ TEST_CASE("box.STL: ten closed parts, refused because the parts overlap each oth
   std::size_t count = 0;
   const std::vector<int> label = shell_labels(p.mesh.faces(), &count);
   REQUIRE(count == 10);
+  double sum = 0.0, largest = 0.0;
   for (int s = 0; s < 10; ++s) {
     std::vector<Eigen::Index> rows;
     for (Eigen::Index f = 0; f < p.mesh.num_faces(); ++f)
@@ -92,10 +97,25 @@ TEST_CASE("box.STL: ten closed parts, refused because the parts overlap each oth
     for (std::size_t i = 0; i < rows.size(); ++i)
       part.row(static_cast<Eigen::Index>(i)) = p.mesh.faces().row(rows[i]);
     CHECK(find_self_intersections(p.mesh.vertices(), part).pairs == 0);
+    const double volume = std::abs(SurfaceMesh(p.mesh.vertices(), part).signed_volume());
+    sum += volume;
+    largest = std::max(largest, volume);
   }
   // ... but together they overlap, which a single solid's boundary cannot.
   CHECK(!p.report.usable());
   CHECK(has_problem(p.report, MeshProblem::Status::refused, "intersecting faces"));
+
+  // Repaired: the boundary of the union, one closed solid that holds every part.
+  const PreparedMesh united = inspect_mesh_file(data + "/meshes/box.STL");
+  CHECK(united.report.usable());
+  CHECK(united.report.shells == 1);
+  CHECK(has_problem(united.report, MeshProblem::Status::repaired, "overlapping bodies"));
+  CHECK(validate_mesh(united.mesh.vertices(), united.mesh.faces()).closed_manifold());
+  CHECK(find_self_intersections(united.mesh.vertices(), united.mesh.faces()).pairs == 0);
+  CHECK(united.report.volume < sum);
+  CHECK(united.report.volume > largest);
+  CHECK(united.report.bounding_box.min.isApprox(p.report.bounding_box.min, 1e-12));
+  CHECK(united.report.bounding_box.max.isApprox(p.report.bounding_box.max, 1e-12));
 }
 
 TEST_CASE("a shell whose cavity wall points outward is repaired, cavity counted") {
