@@ -218,8 +218,8 @@ PreparedMesh inspect_triangle_soup(const TriangleSoup& soup, const std::string& 
                                       ? "; along " +
                                             counted(split.edges_crossing, "edge", "edges") +
                                             " (first at " + format_point(split.first_crossing) +
-                                            ") bodies pass through each other and are united "
-                                            "below"
+                                            ") bodies pass through each other (see the "
+                                            "overlapping bodies below)"
                                       : ""));
       report.repairs.push_back("split " +
                                counted(split.edges_split, "non-manifold edge", "non-manifold edges") +
@@ -385,6 +385,13 @@ PreparedMesh inspect_triangle_soup(const TriangleSoup& soup, const std::string& 
                     counted(si.pairs, "pair", "pairs") + " of intersecting faces",
                     "not repaired: " + fix.why_left + " (" + tolerance +
                         "); unite the bodies (boolean union) or separate them in CAD");
+      } else if (fix.crossings_left) {
+        closed = false;
+        add_problem(report, Status::refused, split.edges_crossing, split.first_crossing,
+                    counted(split.edges_crossing, "edge", "edges") +
+                        " along which bodies pass through each other",
+                    "not repaired: " + fix.why_left +
+                        "; unite the bodies (boolean union) or separate them in CAD");
       }
       // The repairs must leave a closed, consistently oriented surface; check it again.
       consistent = orient_consistently(V, F);

@@ -339,11 +339,10 @@ IntersectionRepair resolve_self_intersections(
       }
       members = std::move(groups);
       if (members.empty()) {
-        if (current.pairs > 0)
-          result.why_left = "the intersecting faces of different shells could not be grouped";
-        if (current.pairs > 0)
-          break;
-        continue;
+        // Only a shell passing through itself along shared edges: no union resolves that.
+        result.crossings_left = !crossing_edges.empty();
+        result.why_left = "a surface passes through itself along edges it shares with itself";
+        break;
       }
       bool mixed = false;
       for (const std::vector<int>& m : members) {
@@ -353,12 +352,14 @@ IntersectionRepair resolve_self_intersections(
         mixed = mixed || (positive && negative);
       }
       if (mixed) {
+        result.crossings_left = !crossing_edges.empty();
         result.why_left = "shells of opposite orientation cross (a cavity wall crossing an "
                           "outer skin?): which of them bounds a cavity cannot be told";
         break;
       }
       detail::CgalUnion united = detail::cgal_unite_shells(V, F, shell, group);
       if (!united.ok) {
+        result.crossings_left = !crossing_edges.empty();
         result.why_left = "the union of the overlapping bodies failed (" + united.failure + ")";
         break;
       }

@@ -103,6 +103,8 @@ struct IntersectionRepair {
   double volume_change = 0.0;
   /// What is left: the pairs still intersecting, where, and why they were not repaired.
   SelfIntersections left;
+  /// Bodies crossing along shared edges (crossing_edges) that were not united.
+  bool crossings_left = false;
   std::string why_left;
 };
 
