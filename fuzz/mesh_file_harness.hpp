@@ -1,8 +1,9 @@
 #pragma once
 // The body of the mesh-file harnesses (fuzz_stl, fuzz_obj, fuzz_off, fuzz_ply): read the
 // bytes as a file of the given extension, then run validation and repair on what was read,
-// and check the pipeline's promise: a mesh reported usable is closed and manifold, every
-// face index is in range and every coordinate finite.
+// and check the pipeline's promise: a mesh reported usable is closed, manifold, consistently
+// oriented and free of self-intersections, every face index is in range and every coordinate
+// finite.
 
 #include <cstdlib>
 
@@ -10,6 +11,7 @@
 #include "geometry/mesh_io.hpp"
 #include "geometry/mesh_preparation.hpp"
 #include "geometry/mesh_validation.hpp"
+#include "geometry/self_intersection.hpp"
 
 namespace bemshape::fuzz {
 
@@ -20,7 +22,9 @@ inline void check_prepared(const geometry::PreparedMesh& prepared) {
   const auto& f = prepared.mesh.faces();
   if (f.rows() == 0 || !v.allFinite()) std::abort();
   if (f.size() > 0 && (f.minCoeff() < 0 || f.maxCoeff() >= v.rows())) std::abort();
-  if (!geometry::validate_mesh(v, f).closed_manifold()) std::abort();
+  const geometry::MeshValidation validation = geometry::validate_mesh(v, f);
+  if (!validation.closed_manifold() || validation.inconsistent_edges) std::abort();
+  if (geometry::find_self_intersections(v, f).pairs > 0) std::abort();
 }
 
 inline int run_mesh_file(const std::uint8_t* data, std::size_t size, const char* extension) {

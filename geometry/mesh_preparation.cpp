@@ -202,7 +202,7 @@ PreparedMesh inspect_triangle_soup(const TriangleSoup& soup, const std::string& 
   Eigen::MatrixX3d V = cleanup.vertices;
   Eigen::MatrixX3i F = cleanup.faces;
   NonmanifoldSplit split;
-  if (options.repair_surface) {
+  if (options.repair_surface && (before.nonmanifold_edges || before.nonmanifold_vertices)) {
     split = split_nonmanifold(V, F);
     if (split.edges_split > 0) {
       add_problem(report, Status::repaired, split.edges_split, split.first_edge,
@@ -257,7 +257,8 @@ PreparedMesh inspect_triangle_soup(const TriangleSoup& soup, const std::string& 
 
   // Stitch, drop loose open pieces, fill small holes.
   HoleClosing holes;
-  if (options.repair_surface && consistent.orientable && F.rows() > 0) {
+  MeshValidation after = validate_mesh(V, F);
+  if (options.repair_surface && consistent.orientable && after.boundary_edges) {
     throw_if_cancelled();
     report_progress(progress, "holes", 0.3);
     holes = close_small_holes(V, F, repair_length);
@@ -292,8 +293,8 @@ PreparedMesh inspect_triangle_soup(const TriangleSoup& soup, const std::string& 
       for (const SurfaceRepairStep& step : holes.holes_filled)
         report.repairs.push_back(step.description);
     }
+    after = validate_mesh(V, F);
   }
-  MeshValidation after = validate_mesh(V, F);
 
   // Refusals.
   if (after.boundary_edges) {
@@ -333,7 +334,14 @@ PreparedMesh inspect_triangle_soup(const TriangleSoup& soup, const std::string& 
                 "they lie on a hole or a non-manifold edge; fix the surface in CAD");
   // Every face collapsed (e.g. all corners welded together): nothing is left to bound a
   // solid, and an empty mesh would pass every rule above (found by fuzz/fuzz_stl).
-  if (F.rows() == 0)
+  if (F.rows() == 0 && !holes.pieces_removed.empty())
+    add_problem(report, Status::refused, holes.pieces_removed.size(),
+                holes.pieces_removed.front().where,
+                "no face left after removing " +
+                    counted(holes.pieces_removed.size(), "loose open piece", "loose open pieces"),
+                "every piece of the surface is open and at most " + tolerance +
+                    " across: the file holds no closed solid");
+  else if (F.rows() == 0)
     add_problem(report, Status::refused, static_cast<std::size_t>(weld.faces.rows()),
                 before.collapsed_faces.first,
                 "no face left after removing " +
@@ -415,6 +423,11 @@ PreparedMesh inspect_triangle_soup(const TriangleSoup& soup, const std::string& 
     add_problem(report, Status::note, 0, Eigen::Vector3d::Zero(), "self-intersection test skipped",
                 "it needs a manifold, orientable surface");
   }
+
+  // Whatever the repairs did, an empty mesh bounds nothing (and passes every rule above).
+  if (F.rows() == 0 && report.usable())
+    add_problem(report, Status::refused, 0, Eigen::Vector3d::Zero(), "no face left",
+                "the repairs removed every face: the file holds no closed solid");
 
   throw_if_cancelled();
   report_progress(progress, "orientation", 0.8);

@@ -206,6 +206,7 @@ IntersectionRepair resolve_self_intersections(
       std::vector<SurfaceRepairStep> steps;
       double largest = 0.0;
       Eigen::Vector3d largest_at = Eigen::Vector3d::Zero();
+      std::size_t whole_shells = 0;
       for (int root : roots) {
         std::vector<char> region(nf, 0);
         std::size_t pairs = 0;
@@ -217,10 +218,17 @@ IntersectionRepair resolve_self_intersections(
         for (const auto& pair : local)
           pairs += cluster[static_cast<std::size_t>(pair.first)] ? 1 : 0;
         grow(F, static_cast<std::size_t>(V.rows()), small, region, ring);
-        const bool empty = std::find(region.begin(), region.end(), 1) == region.end();
+        // Cutting out a whole shell would delete a body, not repair it.
+        const int own_shell = shell[static_cast<std::size_t>(root)];
+        bool whole_shell = true;
+        for (std::size_t f = 0; f < nf && whole_shell; ++f)
+          whole_shell = shell[f] != own_shell || region[f];
+        const bool empty =
+            whole_shell || std::find(region.begin(), region.end(), 1) == region.end();
         const Eigen::AlignedBox3d box = box_of(V, F, empty ? cluster : region);
         const double size = box.diagonal().norm();
         if (empty || size > repair_length) {
+          whole_shells += whole_shell ? 1 : 0;
           if (size > largest) {
             largest = size;
             largest_at = box.center();
@@ -240,9 +248,12 @@ IntersectionRepair resolve_self_intersections(
           remove[f] = remove[f] || region[f];
       }
       if (steps.empty()) {
-        result.why_left = "the surface crosses itself over a region " + number(largest) +
-                          " across at " + point(largest_at) +
-                          ", larger than the repair length";
+        result.why_left =
+            whole_shells > 0
+                ? "a shell crosses itself throughout (" + number(largest) + " across at " +
+                      point(largest_at) + "): cutting out its crossing faces would delete it"
+                : "the surface crosses itself over a region " + number(largest) + " across at " +
+                      point(largest_at) + ", larger than the repair length";
         break;
       }
       const double before = signed_volume(V, F);

@@ -10,6 +10,7 @@
 #include <CGAL/Polygon_mesh_processing/measure.h>
 #include <CGAL/Polygon_mesh_processing/orientation.h>
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
+#include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/Polygon_mesh_processing/stitch_borders.h>
 #include <CGAL/Polygon_mesh_processing/triangulate_hole.h>
 #include <CGAL/Surface_mesh.h>
@@ -297,6 +298,13 @@ CgalUnion cgal_unite_shells(const Eigen::MatrixX3d& vertices, const Eigen::Matri
       if (!build_mesh(vertices, faces, members[g][s], body) || !CGAL::is_closed(body)) {
         result.ok = false;
         result.failure = "a shell of the overlapping bodies is not a closed manifold surface";
+        return result;
+      }
+      // corefine_and_compute_union requires each input to bound a volume and not to cross
+      // itself (unchecked in release builds): test it here rather than risk a crash.
+      if (PMP::does_self_intersect(body) || !PMP::does_bound_a_volume(body)) {
+        result.ok = false;
+        result.failure = "a shell of the overlapping bodies crosses itself or bounds no volume";
         return result;
       }
       if (PMP::volume(body) < 0.0)

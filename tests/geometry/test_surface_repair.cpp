@@ -16,6 +16,7 @@
 #include "geometry/primitive_meshes.hpp"
 #include "geometry/self_intersection.hpp"
 #include "geometry/surface_repair.hpp"
+#include "geometry/vertex_welding.hpp"
 
 using namespace bemshape;
 using namespace bemshape::geometry;
@@ -131,6 +132,33 @@ TEST_CASE("repair: a removed fan on the sphere is refilled close to the sphere")
   CHECK(std::abs(p.report.volume - intact.report.volume) <= bound);
   for (Eigen::Index i = 0; i < p.mesh.num_vertices(); ++i)
     CHECK(std::abs(p.mesh.vertices().row(i).norm() - 1.0) <= s);
+}
+
+TEST_CASE("repair: the smallest vertex fan of plate_holes removed is refilled at the default") {
+  // plate_holes.STL (a CAD export, 1252 faces): the smallest fan of a vertex lies on the
+  // wall of one of the small holes, 7.08 across, under 2 % of the diagonal (7.33).
+  const TriangleSoup soup = read_triangle_soup(data + "/meshes/plate_holes.STL");
+  const WeldResult w = weld_vertices(soup.vertices, soup.faces);
+  const PreparedMesh intact = prepare_mesh_file(data + "/meshes/plate_holes.STL");
+  int best = -1;
+  double d = 1e300;
+  for (int v = 0; v < w.vertices.rows(); ++v) {
+    const double e = extent_of(w.vertices, w.faces, fan(w.faces, v), v);
+    if (e < d) {
+      d = e;
+      best = v;
+    }
+  }
+  REQUIRE(d < kRepairRelativeLength * intact.report.bounding_box.diagonal());
+  const std::set<Eigen::Index> removed = fan(w.faces, best);
+  const PreparedMesh p =
+      inspect_triangle_soup(soup_of(w.vertices, without(w.faces, removed)), "plate_holes");
+  check_sound(p);
+  CHECK(has_repair(p.report, "filled a hole of " + std::to_string(removed.size()) + " edges"));
+  // The removed surface and the patch both span the rim, inside a region d across: the
+  // volume moves by at most d³ (here 5e-4 of the part).
+  CAPTURE(d, p.report.volume, intact.report.volume);
+  CHECK(std::abs(p.report.volume - intact.report.volume) <= d * d * d);
 }
 
 TEST_CASE("repair: a small hole on a flat face is closed flat, volume unchanged") {
