@@ -93,7 +93,19 @@ CgalSelfIntersections cgal_self_intersections(const Eigen::MatrixX3d& vertices,
   };
   auto p = [&](int v) -> const Point& { return points[static_cast<std::size_t>(v)]; };
 
+  // A face with two corners at one position, or three collinear corners, has no interior
+  // and no normal: it is reported as intersecting whatever its box meets (its neighbours at
+  // least), so that the repairs cut it out, never passed over.
+  std::vector<char> degenerate(static_cast<std::size_t>(faces.rows()), 0);
+  for (Eigen::Index f = 0; f < faces.rows(); ++f)
+    degenerate[static_cast<std::size_t>(f)] =
+        same(corner(f, 0), corner(f, 1)) || same(corner(f, 1), corner(f, 2)) ||
+        same(corner(f, 0), corner(f, 2)) ||
+        CGAL::collinear(p(corner(f, 0)), p(corner(f, 1)), p(corner(f, 2)));
+
   auto intersect = [&](Eigen::Index f, Eigen::Index g) {
+    if (degenerate[static_cast<std::size_t>(f)] || degenerate[static_cast<std::size_t>(g)])
+      return true;
     // Corners of g matching corner k of f, by identity.
     int match[3] = {-1, -1, -1};
     int shared = 0;

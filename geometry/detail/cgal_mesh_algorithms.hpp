@@ -27,7 +27,8 @@ inline constexpr std::size_t kMaxListedIntersections = 1'000'000;
 /// CGAL::Polygon_mesh_processing::self_intersections (exact predicates): faces sharing an
 /// edge intersect only if they are coplanar and on the same side of it (a fold), faces
 /// sharing a vertex only if an opposite edge meets the other face, other faces if they
-/// meet at all. "Shared" is decided by position, not by index: copies of one vertex made by
+/// meet at all; a degenerate face (two corners at one position, or collinear corners)
+/// intersects every face whose box meets its own. "Shared" is decided by position, not by index: copies of one vertex made by
 /// splitting a non-manifold edge or vertex count as the same vertex, so two bodies that
 /// touch along an edge or at a point do not intersect. Box intersection (CGAL
 /// box_self_intersection_d) finds the candidate pairs.
