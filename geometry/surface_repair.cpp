@@ -7,8 +7,11 @@
 #include <map>
 #include <numeric>
 
+#include "core/errors.hpp"
+#include "geometry/constructive_solids.hpp"
 #include "geometry/detail/cgal_mesh_repair.hpp"
 #include "geometry/mesh_validation.hpp"
+#include "geometry/surface_mesh.hpp"
 
 namespace bemshape::geometry {
 namespace {
@@ -92,6 +95,104 @@ std::vector<char> small_faces(const Eigen::MatrixX3d& v, const Eigen::MatrixX3i&
     small[static_cast<std::size_t>(i)] = box.diagonal().norm() <= length;
   }
   return small;
+}
+
+struct UnitedShells {
+  Eigen::MatrixX3d vertices;
+  Eigen::MatrixX3i faces;
+  bool ok = true;
+  std::string failure;
+};
+
+/// The faces of one shell with their own compact vertex array.
+SurfaceMesh shell_mesh(const Eigen::MatrixX3d& v, const Eigen::MatrixX3i& f,
+                       const std::vector<int>& shell, int which) {
+  std::vector<int> index(static_cast<std::size_t>(v.rows()), -1);
+  std::vector<Eigen::Index> rows;
+  int next = 0;
+  for (Eigen::Index i = 0; i < f.rows(); ++i)
+    if (shell[static_cast<std::size_t>(i)] == which) {
+      rows.push_back(i);
+      for (int k = 0; k < 3; ++k)
+        if (index[static_cast<std::size_t>(f(i, k))] < 0)
+          index[static_cast<std::size_t>(f(i, k))] = next++;
+    }
+  Eigen::MatrixX3d vertices(next, 3);
+  for (Eigen::Index i = 0; i < v.rows(); ++i)
+    if (index[static_cast<std::size_t>(i)] >= 0)
+      vertices.row(index[static_cast<std::size_t>(i)]) = v.row(i);
+  Eigen::MatrixX3i faces(static_cast<Eigen::Index>(rows.size()), 3);
+  for (std::size_t r = 0; r < rows.size(); ++r)
+    for (int k = 0; k < 3; ++k)
+      faces(static_cast<Eigen::Index>(r), k) =
+          index[static_cast<std::size_t>(f(rows[r], k))];
+  return SurfaceMesh(std::move(vertices), std::move(faces));
+}
+
+/// Replaces the shells of each group (group[s] for shell s, −1: none) by the boundary of
+/// their union (mesh_union: CGAL corefinement, exact predicates and constructions,
+/// intersection points rounded to double), each shell oriented outward first. Every shell
+/// must be closed and must not cross itself (corefinement's precondition, tested here).
+UnitedShells unite_shells(const Eigen::MatrixX3d& v, const Eigen::MatrixX3i& f,
+                          const std::vector<int>& shell, const std::vector<int>& group,
+                          const std::vector<std::vector<int>>& members) {
+  UnitedShells result;
+  std::vector<SurfaceMesh> united;
+  for (const std::vector<int>& m : members) {
+    SurfaceMesh accumulated;
+    for (int s : m) {
+      SurfaceMesh body = shell_mesh(v, f, shell, s);
+      if (find_self_intersections(body.vertices(), body.faces()).pairs > 0) {
+        result.ok = false;
+        result.failure = "a shell of the overlapping bodies crosses itself";
+        return result;
+      }
+      if (body.signed_volume() < 0.0)
+        body = with_flipped_orientation(body);
+      try {
+        accumulated = accumulated.empty() ? std::move(body) : mesh_union(accumulated, body);
+      } catch (const InputError& e) {
+        result.ok = false;
+        result.failure = e.what();
+        return result;
+      }
+    }
+    united.push_back(std::move(accumulated));
+  }
+  // Faces of shells in no group keep their vertices; the unions' vertices follow.
+  std::vector<int> index(static_cast<std::size_t>(v.rows()), -1);
+  std::vector<Eigen::Vector3d> points;
+  std::vector<std::array<int, 3>> triangles;
+  for (Eigen::Index i = 0; i < f.rows(); ++i) {
+    if (group[static_cast<std::size_t>(shell[static_cast<std::size_t>(i)])] >= 0)
+      continue;
+    std::array<int, 3> t{};
+    for (int k = 0; k < 3; ++k) {
+      int& at = index[static_cast<std::size_t>(f(i, k))];
+      if (at < 0) {
+        at = static_cast<int>(points.size());
+        points.push_back(v.row(f(i, k)).transpose());
+      }
+      t[static_cast<std::size_t>(k)] = at;
+    }
+    triangles.push_back(t);
+  }
+  for (const SurfaceMesh& mesh : united) {
+    const int offset = static_cast<int>(points.size());
+    for (Eigen::Index i = 0; i < mesh.num_vertices(); ++i)
+      points.push_back(mesh.vertices().row(i).transpose());
+    for (Eigen::Index i = 0; i < mesh.num_faces(); ++i)
+      triangles.push_back({mesh.faces()(i, 0) + offset, mesh.faces()(i, 1) + offset,
+                           mesh.faces()(i, 2) + offset});
+  }
+  result.vertices.resize(static_cast<Eigen::Index>(points.size()), 3);
+  for (std::size_t i = 0; i < points.size(); ++i)
+    result.vertices.row(static_cast<Eigen::Index>(i)) = points[i].transpose();
+  result.faces.resize(static_cast<Eigen::Index>(triangles.size()), 3);
+  for (std::size_t i = 0; i < triangles.size(); ++i)
+    for (int k = 0; k < 3; ++k)
+      result.faces(static_cast<Eigen::Index>(i), k) = triangles[i][static_cast<std::size_t>(k)];
+  return result;
 }
 
 std::string describe_fill(const detail::CgalHole& hole) {
@@ -368,7 +469,7 @@ IntersectionRepair resolve_self_intersections(
                           "outer skin?): which of them bounds a cavity cannot be told";
         break;
       }
-      detail::CgalUnion united = detail::cgal_unite_shells(V, F, shell, group);
+      UnitedShells united = unite_shells(V, F, shell, group, members);
       if (!united.ok) {
         result.crossings_left = !crossing_edges.empty();
         result.why_left = "the union of the overlapping bodies failed (" + united.failure + ")";

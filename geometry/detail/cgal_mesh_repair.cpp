@@ -1,16 +1,13 @@
-// The one translation unit that compiles CGAL's hole filling, fairing and corefinement
-// (slow to compile; CGAL_EIGEN3_ENABLED is set for it in geometry/CMakeLists.txt so that
-// fairing uses Eigen's sparse LU).
+// The translation unit that compiles CGAL's stitching, hole filling and fairing (slow to
+// compile; CGAL_EIGEN3_ENABLED is set for it in geometry/CMakeLists.txt so that fairing uses
+// Eigen's sparse LU). The union of overlapping bodies uses cgal_boolean_operations.cpp.
 #include "geometry/detail/cgal_mesh_repair.hpp"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/border.h>
 #include <CGAL/Polygon_mesh_processing/connected_components.h>
-#include <CGAL/Polygon_mesh_processing/corefinement.h>
 #include <CGAL/Polygon_mesh_processing/measure.h>
-#include <CGAL/Polygon_mesh_processing/orientation.h>
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
-#include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/Polygon_mesh_processing/stitch_borders.h>
 #include <CGAL/Polygon_mesh_processing/triangulate_hole.h>
 #include <CGAL/Surface_mesh.h>
@@ -265,104 +262,6 @@ CgalFaceReplacement cgal_replace_faces(const Eigen::MatrixX3d& vertices,
     result.all_filled = result.all_filled && result.holes.back().filled;
   }
   to_arrays(mesh, result.vertices, result.faces);
-  return result;
-}
-
-CgalUnion cgal_unite_shells(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces,
-                            const std::vector<int>& shell, const std::vector<int>& group) {
-  CgalUnion result;
-  int groups = 0;
-  for (int g : group)
-    groups = std::max(groups, g + 1);
-  std::vector<std::vector<std::vector<Eigen::Index>>> members(static_cast<std::size_t>(groups));
-  std::vector<Eigen::Index> untouched;
-  for (std::size_t g = 0; g < members.size(); ++g)
-    members[g].resize(group.size());
-  for (Eigen::Index f = 0; f < faces.rows(); ++f) {
-    const int s = shell[static_cast<std::size_t>(f)];
-    const int g = s >= 0 ? group[static_cast<std::size_t>(s)] : -1;
-    if (g < 0)
-      untouched.push_back(f);
-    else
-      members[static_cast<std::size_t>(g)][static_cast<std::size_t>(s)].push_back(f);
-  }
-
-  std::vector<Mesh> united;
-  for (std::size_t g = 0; g < members.size(); ++g) {
-    Mesh accumulated;
-    bool first = true;
-    for (std::size_t s = 0; s < members[g].size(); ++s) {
-      if (members[g][s].empty())
-        continue;
-      Mesh body;
-      if (!build_mesh(vertices, faces, members[g][s], body) || !CGAL::is_closed(body)) {
-        result.ok = false;
-        result.failure = "a shell of the overlapping bodies is not a closed manifold surface";
-        return result;
-      }
-      // corefine_and_compute_union requires each input to bound a volume and not to cross
-      // itself (unchecked in release builds): test it here rather than risk a crash.
-      if (PMP::does_self_intersect(body) || !PMP::does_bound_a_volume(body)) {
-        result.ok = false;
-        result.failure = "a shell of the overlapping bodies crosses itself or bounds no volume";
-        return result;
-      }
-      if (PMP::volume(body) < 0.0)
-        PMP::reverse_face_orientations(body);
-      if (first) {
-        accumulated = std::move(body);
-        first = false;
-        continue;
-      }
-      Mesh out;
-      bool ok = false;
-      try {
-        ok = PMP::corefine_and_compute_union(accumulated, body, out);
-      } catch (const std::exception& e) {
-        result.failure = std::string("CGAL corefinement failed: ") + e.what();
-      }
-      if (!ok) {
-        result.ok = false;
-        if (result.failure.empty())
-          result.failure = "CGAL corefinement could not form the union as a manifold surface";
-        return result;
-      }
-      accumulated = std::move(out);
-    }
-    united.push_back(std::move(accumulated));
-  }
-
-  // Untouched faces keep their vertices; the unions' vertices follow.
-  std::vector<Eigen::Vector3d> points;
-  std::vector<std::array<int, 3>> triangles;
-  std::map<int, int> index;
-  for (Eigen::Index f : untouched) {
-    std::array<int, 3> t{};
-    for (int k = 0; k < 3; ++k) {
-      const auto [it, inserted] = index.try_emplace(faces(f, k), static_cast<int>(points.size()));
-      if (inserted)
-        points.push_back(vertices.row(faces(f, k)).transpose());
-      t[static_cast<std::size_t>(k)] = it->second;
-    }
-    triangles.push_back(t);
-  }
-  for (const Mesh& mesh : united) {
-    Eigen::MatrixX3d v;
-    Eigen::MatrixX3i t;
-    to_arrays(mesh, v, t);
-    const int offset = static_cast<int>(points.size());
-    for (Eigen::Index i = 0; i < v.rows(); ++i)
-      points.push_back(v.row(i).transpose());
-    for (Eigen::Index i = 0; i < t.rows(); ++i)
-      triangles.push_back({t(i, 0) + offset, t(i, 1) + offset, t(i, 2) + offset});
-  }
-  result.vertices.resize(static_cast<Eigen::Index>(points.size()), 3);
-  for (std::size_t i = 0; i < points.size(); ++i)
-    result.vertices.row(static_cast<Eigen::Index>(i)) = points[i].transpose();
-  result.faces.resize(static_cast<Eigen::Index>(triangles.size()), 3);
-  for (std::size_t i = 0; i < triangles.size(); ++i)
-    for (int k = 0; k < 3; ++k)
-      result.faces(static_cast<Eigen::Index>(i), k) = triangles[i][static_cast<std::size_t>(k)];
   return result;
 }
 

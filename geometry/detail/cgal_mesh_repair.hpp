@@ -1,18 +1,17 @@
 #pragma once
 // Internal: the CGAL Polygon_mesh_processing repairs that change the surface (stitching,
-// hole filling, replacing faces, Boolean union), behind plain Eigen types so that CGAL is
+// hole filling, replacing faces), behind plain Eigen types so that CGAL is
 // compiled in one translation unit (cgal_mesh_repair.cpp) and never appears in a header.
 // Which defects are small enough to repair is decided by the caller (surface_repair.cpp);
 // these functions only do what they are asked.
 //
 // Every function takes a consistently oriented mesh whose edges have at most two faces and
 // whose vertices each have one fan of faces (nonmanifold_split.hpp, mesh_orientation.hpp),
-// and returns arrays of the same kind. Vertex positions are kept exactly; new vertices
-// (hole patches, intersection points of a union) are appended.
+// and returns arrays of the same kind. Vertex positions are kept exactly; new vertices (hole
+// patches) are appended.
 
 #include <Eigen/Core>
 #include <cstddef>
-#include <string>
 #include <vector>
 
 namespace bemshape::geometry::detail {
@@ -78,21 +77,5 @@ struct CgalFaceReplacement {
 CgalFaceReplacement cgal_replace_faces(const Eigen::MatrixX3d& vertices,
                                        const Eigen::MatrixX3i& faces,
                                        const std::vector<char>& remove);
-
-struct CgalUnion {
-  Eigen::MatrixX3d vertices;
-  Eigen::MatrixX3i faces;
-  bool ok = true;
-  /// Why it failed (CGAL's message or which step), if !ok.
-  std::string failure;
-};
-
-/// For each group of shells (group[s] for shell s; −1: not in a group), replaces the shells
-/// of the group by the boundary of their union (CGAL::Polygon_mesh_processing::
-/// corefine_and_compute_union, exact predicates and constructions, intersection points
-/// rounded to double). Each shell must be closed and free of self-intersections; it is
-/// oriented outward first. shell[f]: the shell of face f (shell_labels).
-CgalUnion cgal_unite_shells(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces,
-                            const std::vector<int>& shell, const std::vector<int>& group);
 
 }  // namespace bemshape::geometry::detail
