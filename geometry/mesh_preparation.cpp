@@ -465,7 +465,7 @@ PreparedMesh inspect_triangle_soup(const TriangleSoup& soup, const std::string& 
   MeshReport& r = result.report;
   r.faces = static_cast<std::size_t>(result.mesh.num_faces());
   r.vertices = static_cast<std::size_t>(result.mesh.num_vertices());
-  shell_labels(result.mesh.faces(), &r.shells);
+  r.shells = after.shells;
   r.volume = result.mesh.signed_volume();
   r.area = result.mesh.area();
   r.bounding_box = result.mesh.bounding_box();

@@ -12,7 +12,6 @@
 #include <CGAL/box_intersection_d.h>
 #include <algorithm>
 #include <array>
-#include <map>
 #include <vector>
 
 #include "core/errors.hpp"
@@ -77,16 +76,26 @@ void to_arrays(const Mesh& mesh, Eigen::MatrixX3d& vertices, Eigen::MatrixX3i& f
 CgalSelfIntersections cgal_self_intersections(const Eigen::MatrixX3d& vertices,
                                               const Eigen::MatrixX3i& faces) {
   CgalSelfIntersections result;
-  // Vertices with equal coordinates get one identity (the first such vertex).
-  std::map<std::array<double, 3>, int> identity_of;
-  std::vector<int> identity(static_cast<std::size_t>(vertices.rows()));
-  std::vector<Point> points(static_cast<std::size_t>(vertices.rows()));
-  for (Eigen::Index v = 0; v < vertices.rows(); ++v) {
-    const std::array<double, 3> key{vertices(v, 0), vertices(v, 1), vertices(v, 2)};
-    identity[static_cast<std::size_t>(v)] =
-        identity_of.try_emplace(key, static_cast<int>(v)).first->second;
-    points[static_cast<std::size_t>(v)] = Point(key[0], key[1], key[2]);
+  // Vertices with equal coordinates get one identity (the first such vertex in the order of
+  // their coordinates).
+  const auto nv = static_cast<std::size_t>(vertices.rows());
+  std::vector<int> identity(nv), order(nv);
+  std::vector<Point> points(nv);
+  for (std::size_t v = 0; v < nv; ++v) {
+    const auto i = static_cast<Eigen::Index>(v);
+    points[v] = Point(vertices(i, 0), vertices(i, 1), vertices(i, 2));
+    order[v] = static_cast<int>(v);
   }
+  auto key = [&](int v) {
+    const auto i = static_cast<Eigen::Index>(v);
+    return std::array<double, 3>{vertices(i, 0), vertices(i, 1), vertices(i, 2)};
+  };
+  std::sort(order.begin(), order.end(), [&](int a, int b) { return key(a) < key(b); });
+  for (std::size_t k = 0; k < nv; ++k)
+    identity[static_cast<std::size_t>(order[k])] =
+        k > 0 && key(order[k]) == key(order[k - 1])
+            ? identity[static_cast<std::size_t>(order[k - 1])]
+            : order[k];
   auto corner = [&](Eigen::Index f, int k) { return faces(f, k); };
   auto same = [&](int a, int b) {
     return identity[static_cast<std::size_t>(a)] == identity[static_cast<std::size_t>(b)];
@@ -150,14 +159,21 @@ CgalSelfIntersections cgal_self_intersections(const Eigen::MatrixX3d& vertices,
   for (Eigen::Index f = 0; f < faces.rows(); ++f)
     boxes.emplace_back(p(corner(f, 0)).bbox() + p(corner(f, 1)).bbox() + p(corner(f, 2)).bbox(),
                        f);
-  CGAL::box_self_intersection_d(boxes.begin(), boxes.end(), [&](const Box& x, const Box& y) {
-    const Eigen::Index f = std::min(x.info(), y.info()), g = std::max(x.info(), y.info());
-    if (!intersect(f, g))
-      return;
-    ++result.pairs;
-    if (result.list.size() < kMaxListedIntersections)
-      result.list.emplace_back(f, g);
-  });
+  // Below 2000 boxes the streaming algorithm compares all pairs, as CGAL's
+  // self_intersections does (with the default of 10 it recursed far deeper: 2.6 s instead of
+  // 1.2 s on a geodesic sphere of 10⁶ faces).
+  constexpr std::ptrdiff_t kBoxCutoff = 2000;
+  CGAL::box_self_intersection_d(
+      boxes.begin(), boxes.end(),
+      [&](const Box& x, const Box& y) {
+        const Eigen::Index f = std::min(x.info(), y.info()), g = std::max(x.info(), y.info());
+        if (!intersect(f, g))
+          return;
+        ++result.pairs;
+        if (result.list.size() < kMaxListedIntersections)
+          result.list.emplace_back(f, g);
+      },
+      kBoxCutoff);
   std::sort(result.list.begin(), result.list.end());
   return result;
 }
