@@ -78,7 +78,7 @@ ThicknessResult measure_thickness(const geometry::PreparedMesh& input,
                                   const ThicknessOptions& options,
                                   const ProgressCallback& progress = {});
 
-/// The same for a mesh file (.stl, .obj, .off, .ply), read, validated and repaired first
+/// The same for a mesh file (.stl, .obj, .off, .ply, .3mf), read, validated and repaired first
 /// (stage "read"); throws InputError for a file that cannot be used.
 ThicknessResult measure_thickness(const std::filesystem::path& file,
                                   const ThicknessOptions& options,

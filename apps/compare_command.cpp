@@ -225,7 +225,8 @@ void register_compare_command(CLI::App& app, int& exit_code) {
       "Solve one part by the BEM and by the voxel FEM with the same parameters and report the "
       "relative differences of f_h and h_p at interior probe points (FEM cell centres at least "
       "two cells from the surface). Lengths in the input file's units.");
-  cmd->add_option("INPUT", options->input, "Mesh file: .stl (ASCII or binary), .obj, .off, .ply")
+  cmd->add_option("INPUT", options->input,
+                  "Mesh file: .stl (ASCII or binary), .obj, .off, .ply, .3mf")
       ->required();
   cmd->add_option("--cell", options->cell, "FEM grid cell size, in file units")->required();
   cmd->add_option("--h0", options->h0,

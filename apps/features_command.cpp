@@ -201,7 +201,8 @@ void register_features_command(CLI::App& app, int& exit_code) {
       "features",
       "Shape features inside a solid part at given points or on a regular grid (no volume "
       "mesh): inside flag, s, f_h, h_f, h_p, n_f, skeleton. Lengths in the input file's units.");
-  cmd->add_option("INPUT", options->input, "Mesh file: .stl (ASCII or binary), .obj, .off, .ply")
+  cmd->add_option("INPUT", options->input,
+                  "Mesh file: .stl (ASCII or binary), .obj, .off, .ply, .3mf")
       ->required();
   cmd->add_option("--points", options->points_path,
                   "Text/CSV file of points x,y,z (one per line, optional header)");

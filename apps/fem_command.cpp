@@ -232,7 +232,8 @@ void register_fem_command(CLI::App& app, int& exit_code) {
       "raw bytes with --dims) or a voxelised surface mesh; writes a .vti (and PNG pictures in "
       "2-D)");
   cmd->add_option("INPUT", options->input,
-                  "PNG image, folder of PNG slices, raw volume or mesh file")
+                  "PNG image, folder of PNG slices, raw volume or mesh file (.stl, .obj, .off, "
+                  ".ply, .3mf)")
       ->required();
   cmd->add_option("--cell", options->cell, "grid cell size [model units]")->required();
   cmd->add_option(

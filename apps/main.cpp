@@ -36,7 +36,7 @@ int main(int argc, char** argv) {
   pad_heap_growth();           // the assembly threads' heaps get huge pages too
   CLI::App app{
       "bemshape: local wall thickness, orientation and skeleton of solid parts given as closed "
-      "triangle meshes (STL, OBJ, OFF, PLY). Lengths are in the units of the input file."};
+      "triangle meshes (STL, OBJ, OFF, PLY, 3MF). Lengths are in the units of the input file."};
   // The instruction set the build targets (BEMSHAPE_ARCH): timings depend on it.
   app.set_version_flag("--version", std::string("bemshape ") + BEMSHAPE_VERSION + " (-march=" +
                                         (*BEMSHAPE_ARCH_NAME ? BEMSHAPE_ARCH_NAME : "compiler default") + ")");

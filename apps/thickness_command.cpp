@@ -406,7 +406,8 @@ void register_thickness_command(CLI::App& app, int& exit_code) {
       "Local wall thickness on the surface of a solid part (closed triangle mesh), with an "
       "optional minimum-wall-thickness check. Lengths are in the input file's units. Exit code "
       "0, 1 if --min-thickness finds thinner walls, 2 bad input, 3 numerical failure.");
-  cmd->add_option("INPUT", options->input, "Mesh file: .stl (ASCII or binary), .obj, .off, .ply")
+  cmd->add_option("INPUT", options->input,
+                  "Mesh file: .stl (ASCII or binary), .obj, .off, .ply, .3mf")
       ->required();
   cmd->add_option("--h0", options->h0,
                   "Characteristic length: about the smallest wall thickness of interest, in the "
