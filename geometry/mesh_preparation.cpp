@@ -192,11 +192,18 @@ PreparedMesh inspect_triangle_soup(const TriangleSoup& soup, const std::string& 
                     format_number(kNeedleRelativeHeight) + " of the longest edge)",
                 "valid geometry, but too thin for boundary elements; remesh the surface "
                 "(refine_to_edge_length) before a BEM solve");
-  if (cleanup.collapsed_removed + cleanup.duplicates_removed + cleanup.zero_area_removed > 0)
+  if (cleanup.collapsed_removed > 0)
     report.repairs.push_back(
-        "removed " + std::to_string(cleanup.collapsed_removed + cleanup.duplicates_removed) +
-        " collapsed or duplicate faces and " + std::to_string(cleanup.zero_area_removed) +
-        " zero-area faces");
+        "removed " + counted(cleanup.collapsed_removed, "collapsed face", "collapsed faces") +
+        " (first at " + format_point(before.collapsed_faces.first) + ")");
+  if (cleanup.duplicates_removed > 0)
+    report.repairs.push_back(
+        "removed " + counted(cleanup.duplicates_removed, "duplicate face", "duplicate faces") +
+        " (first at " + format_point(before.duplicate_faces.first) + ")");
+  if (cleanup.zero_area_removed > 0)
+    report.repairs.push_back(
+        "removed " + counted(cleanup.zero_area_removed, "zero-area face", "zero-area faces") +
+        " (first at " + format_point(before.zero_area_faces.first) + ")");
 
   // Cut non-manifold edges and vertices apart (the surface does not move).
   Eigen::MatrixX3d V = cleanup.vertices;

@@ -486,15 +486,32 @@ IntersectionRepair resolve_self_intersections(
           }
         for (int s : m)
           sum += std::abs(volume[static_cast<std::size_t>(s)]);
-        const Eigen::AlignedBox3d box = box_of(V, F, in);
+        // Where the union changes the surfaces: along the curves where they cross. The
+        // segment where faces f and g cross lies in the intersection of their bounding
+        // boxes, so the union of those boxes bounds the curves tightly even where the faces
+        // are large (CAD facets).
+        const auto face_box = [&](Eigen::Index face) {
+          Eigen::AlignedBox3d b;
+          for (int k = 0; k < 3; ++k)
+            b.extend(Eigen::Vector3d(V.row(F(face, k))));
+          return b;
+        };
+        Eigen::AlignedBox3d box;
+        for (const auto& [f, g] : across)
+          if (in[static_cast<std::size_t>(f)] || in[static_cast<std::size_t>(g)])
+            box.extend(face_box(f).intersection(face_box(g)));
+        const Eigen::AlignedBox3d bodies_box = box_of(V, F, in);
+        if (box.isEmpty())
+          box = bodies_box;
         SurfaceRepairStep step;
         step.where = box.center();
         step.size = box.diagonal().norm();
         step.faces_removed = removed;
         step.description = "united " + counted(m.size(), "overlapping body", "overlapping bodies") +
-                           " around " + point(step.where) + " (" + number(step.size) +
-                           " across, volumes adding up to " + number(sum) +
-                           ") into the boundary of their union";
+                           " where their surfaces cross, around " + point(step.where) + ", " +
+                           number(step.size) + " across (the bodies " +
+                           number(bodies_box.diagonal().norm()) + " across, volumes adding up to " +
+                           number(sum) + "), into the boundary of their union";
         result.unions.push_back(std::move(step));
       }
       result.vertices = std::move(united.vertices);

@@ -57,10 +57,11 @@ inline constexpr int kMaxIntersectionRings = 3;
 
 /// One change made to the surface.
 struct SurfaceRepairStep {
-  /// A point of the repaired region (hole centre, cluster centre) [model units].
+  /// A point of the repaired region (hole centre, cluster centre, centre of the curves where
+  /// united bodies cross) [model units].
   Eigen::Vector3d where = Eigen::Vector3d::Zero();
-  /// Its size: bounding-box diagonal of the hole rim, the loose piece or the cut region
-  /// [model units].
+  /// Its size: bounding-box diagonal of the hole rim, the loose piece, the cut region or the
+  /// curves where united bodies cross [model units].
   double size = 0.0;
   std::size_t faces_removed = 0;
   std::size_t faces_added = 0;

@@ -1,6 +1,7 @@
 // analysis/measure_thickness.hpp on the validation ball (R = 0.5, h0 = 0.3, a = 0.2, the
 // default element size: 1280 faces) against its closed form, the same triangles given as a
-// file and as arrays giving the same thickness to the last bit.
+// file and as arrays giving the same thickness to the last bit, and as 3MF and STL files
+// giving the same thickness to 1e-6.
 #include <unistd.h>
 #include <catch2/catch.hpp>
 
@@ -13,6 +14,7 @@
 #include "geometry/mesh_io.hpp"
 #include "geometry/primitive_meshes.hpp"
 #include "tests/support/closed_forms.hpp"
+#include "tests/support/model_3mf_writer.hpp"
 
 using namespace bemshape;
 using namespace bemshape::testing;
@@ -104,4 +106,52 @@ TEST_CASE("measure_thickness: options out of range are refused before the file i
   options.solve.h0 = 0.0;
   CHECK_THROWS_WITH(analysis::measure_thickness(std::string("no such file.stl"), options),
                     Catch::Contains("h0 must be a positive length"));
+}
+
+TEST_CASE("measure_thickness: a part as 3MF and as STL of the same triangles, within 1e-6") {
+  // A ball of radius 50 mm (coordinates irrational, so both files round them) written once
+  // by lib3mf's writer and once as binary STL. Both store float32, but lib3mf's writer
+  // prints six decimals, so a coordinate below 4 in magnitude (float32 step under 5e-7)
+  // comes back up to 5e-7 away from the STL's, 1e-8 of the radius; its parser also lands
+  // about 5 % of the coordinates one float32 step off (docs/geometry.md). The thickness, a
+  // smooth function of the surface, must then agree to 1e-6 relative on every solver face.
+  // h0 and the element size are the first test's in proportion (R = 0.5, h0 = 0.3), at a
+  // coarser edge (500 faces).
+  constexpr double kR = 50.0;
+  constexpr double kSameThickness = 1e-6;
+  const geometry::SurfaceMesh ball =
+      geometry::make_geodesic_sphere(kR, geometry::geodesic_frequency_for_edge(kR, 15.0));
+  const auto temporary = [](const std::string& extension) {
+    return std::filesystem::temp_directory_path() /
+           ("bemshape_analysis_ball_" + std::to_string(::getpid()) + extension);
+  };
+  const std::filesystem::path stl = temporary(".stl"), threemf = temporary(".3mf");
+  output::write_binary_stl(stl.string(), ball.vertices(), ball.faces());
+  Model3mfWriter writer("millimeter");
+  writer.add_build_item(writer.add_mesh(ball.vertices(), ball.faces()));
+  writer.write(threemf);
+
+  analysis::ThicknessOptions options;
+  options.solve.h0 = 30.0;
+  options.solve.max_edge = 15.0;
+  options.map_to_input = false;
+  const analysis::ThicknessResult from_stl = analysis::measure_thickness(stl, options);
+  const analysis::ThicknessResult from_3mf = analysis::measure_thickness(threemf, options);
+  std::filesystem::remove(stl);
+  std::filesystem::remove(threemf);
+  CHECK(from_3mf.input.report.unit == "millimeter");
+  CHECK(from_3mf.input.report.format.rfind("3MF", 0) == 0);
+  REQUIRE(from_3mf.thickness.size() == from_stl.thickness.size());
+  const double difference =
+      ((from_3mf.thickness - from_stl.thickness).array().abs() / from_stl.thickness.array())
+          .maxCoeff();
+  CAPTURE(difference, from_stl.thickness.size());
+  CHECK(difference < kSameThickness);
+  // Not trivially equal: the two files give different coordinates, by at most the six
+  // decimals' rounding or a float32 step at 50 (4e-6).
+  const double moved =
+      (from_3mf.input.mesh.vertices() - from_stl.input.mesh.vertices()).cwiseAbs().maxCoeff();
+  CAPTURE(moved);
+  CHECK(moved > 0.0);
+  CHECK(moved < 1e-7 * kR);
 }

@@ -16,7 +16,7 @@
 #include "geometry/mesh_io.hpp"
 #include "geometry/mesh_preparation.hpp"
 #include "geometry/primitive_meshes.hpp"
-#include "tests/geometry/model_3mf_writer.hpp"
+#include "tests/support/model_3mf_writer.hpp"
 
 using namespace bemshape;
 using namespace bemshape::geometry;

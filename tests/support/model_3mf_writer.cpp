@@ -1,4 +1,4 @@
-#include "tests/geometry/model_3mf_writer.hpp"
+#include "tests/support/model_3mf_writer.hpp"
 
 #include <Model/COM/NMR_DLLInterfaces.h>
 
@@ -88,8 +88,8 @@ int Model3mfWriter::add_mesh(const Eigen::MatrixX3d& vertices, const Eigen::Matr
   for (Eigen::Index i = 0; i < faces.rows(); ++i)
     for (int c = 0; c < 3; ++c)
       t[static_cast<std::size_t>(i)].m_nIndices[c] = static_cast<DWORD>(faces(i, c));
-  check(NMR::lib3mf_meshobject_setgeometry(mesh, v.data(), static_cast<DWORD>(v.size()),
-                                           t.data(), static_cast<DWORD>(t.size())),
+  check(NMR::lib3mf_meshobject_setgeometry(mesh, v.data(), static_cast<DWORD>(v.size()), t.data(),
+                                           static_cast<DWORD>(t.size())),
         "setgeometry");
   check(NMR::lib3mf_object_settype(mesh, type_code(type)), "settype");
   if (!name.empty())
@@ -103,13 +103,12 @@ void Model3mfWriter::add_beam(int object) {
   beam.m_nIndices[0] = 0;
   beam.m_nIndices[1] = 1;
   beam.m_dRadius[0] = beam.m_dRadius[1] = 0.1;
-  check(NMR::lib3mf_meshobject_addbeam(impl_->objects.at(static_cast<std::size_t>(object)),
-                                       &beam, nullptr),
+  check(NMR::lib3mf_meshobject_addbeam(impl_->objects.at(static_cast<std::size_t>(object)), &beam,
+                                       nullptr),
         "addbeam");
 }
 
-int Model3mfWriter::add_components(
-    const std::vector<std::pair<int, Eigen::Affine3d>>& components) {
+int Model3mfWriter::add_components(const std::vector<std::pair<int, Eigen::Affine3d>>& components) {
   NMR::PLib3MFBase* parent = nullptr;
   check(NMR::lib3mf_model_addcomponentsobject(impl_->model, &parent), "addcomponentsobject");
   impl_->keep(parent);
@@ -128,9 +127,8 @@ int Model3mfWriter::add_components(
 void Model3mfWriter::add_build_item(int object, const Eigen::Affine3d& transform) {
   NMR::MODELTRANSFORM m = to_model_transform(transform);
   NMR::PLib3MFBase* item = nullptr;
-  check(NMR::lib3mf_model_addbuilditem(impl_->model,
-                                       impl_->objects.at(static_cast<std::size_t>(object)), &m,
-                                       &item),
+  check(NMR::lib3mf_model_addbuilditem(
+            impl_->model, impl_->objects.at(static_cast<std::size_t>(object)), &m, &item),
         "addbuilditem");
   impl_->keep(item);
 }
@@ -145,9 +143,9 @@ void Model3mfWriter::add_build_item(int object) {
 
 unsigned Model3mfWriter::object_id(int object) const {
   DWORD id = 0;
-  check(NMR::lib3mf_resource_getresourceid(impl_->objects.at(static_cast<std::size_t>(object)),
-                                           &id),
-        "getresourceid");
+  check(
+      NMR::lib3mf_resource_getresourceid(impl_->objects.at(static_cast<std::size_t>(object)), &id),
+      "getresourceid");
   return static_cast<unsigned>(id);
 }
 
