@@ -4,10 +4,11 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
-#include <nlohmann/json.hpp>
 #include <string>
 
 #include "apps/exit_codes.hpp"
+#include "apps/progress_display.hpp"
+#include "apps/report/mesh_report_json.hpp"
 #include "apps/run_limits.hpp"
 #include "apps/report_text.hpp"
 #include "core/errors.hpp"
@@ -19,23 +20,16 @@ namespace {
 using geometry::MeshProblem;
 using geometry::MeshReport;
 
+/// Runs shorter than this [s] show no progress: a check usually takes well under a second
+/// (docs/usage.md), and only files of some 10⁵ triangles and more make it worth a display.
+constexpr double kProgressAfterSeconds = 1.0;
+
 struct CheckOptions {
   std::string input;
   std::string report_path;
   double weld_tolerance = geometry::kWeldRelativeTolerance;
+  bool quiet = false;
 };
-
-const char* status_label(MeshProblem::Status status) {
-  switch (status) {
-    case MeshProblem::Status::repaired:
-      return "repaired";
-    case MeshProblem::Status::refused:
-      return "REFUSED";
-    case MeshProblem::Status::note:
-      return "note";
-  }
-  return "";
-}
 
 void print_report(const MeshReport& r, std::ostream& out) {
   const Eigen::Vector3d extent = r.bounding_box.extent();
@@ -60,40 +54,12 @@ void print_report(const MeshReport& r, std::ostream& out) {
       << "  weld tolerance  " << number_text(r.weld_tolerance, 6) << '\n';
   out << "problems:" << (r.problems.empty() ? " none\n" : "\n");
   for (const MeshProblem& p : r.problems)
-    out << "  [" << status_label(p.status) << "] "
+    out << "  [" << problem_status_label(p.status) << "] "
         << (p.count > 0 ? p.describe() : p.what + ": " + p.consequence) << '\n';
   out << "repairs:" << (r.repairs.empty() ? " none\n" : "\n");
   for (const std::string& repair : r.repairs)
     out << "  - " << repair << '\n';
   out << "result: " << (r.usable() ? "usable" : "refused") << '\n';
-}
-
-nlohmann::json to_json(const MeshReport& r) {
-  auto vec = [](const Eigen::Vector3d& p) { return nlohmann::json::array({p.x(), p.y(), p.z()}); };
-  nlohmann::json problems = nlohmann::json::array();
-  for (const MeshProblem& p : r.problems)
-    problems.push_back({{"status", status_label(p.status)},
-                        {"what", p.what},
-                        {"count", p.count},
-                        {"first_at", vec(p.first)},
-                        {"consequence", p.consequence}});
-  return {{"source", r.source},
-          {"format", r.format},
-          {"unit", r.unit},
-          {"converted_from", r.converted_from},
-          {"triangles_read", r.triangles_read},
-          {"vertices_read", r.vertices_read},
-          {"faces", r.faces},
-          {"vertices", r.vertices},
-          {"shells", r.shells},
-          {"cavities", r.cavities},
-          {"volume", r.volume},
-          {"area", r.area},
-          {"bounding_box", {{"min", vec(r.bounding_box.min)}, {"max", vec(r.bounding_box.max)}}},
-          {"weld_tolerance", r.weld_tolerance},
-          {"problems", problems},
-          {"repairs", r.repairs},
-          {"usable", r.usable()}};
 }
 
 void run_check(const CheckOptions& options, int& exit_code) {
@@ -102,12 +68,15 @@ void run_check(const CheckOptions& options, int& exit_code) {
                      " must be in [0, 0.01)");
   geometry::MeshPreparationOptions preparation;
   preparation.weld_relative_tolerance = options.weld_tolerance;
-  const geometry::PreparedMesh prepared = geometry::inspect_mesh_file(options.input, preparation);
+  ProgressDisplay display(options.quiet, kProgressAfterSeconds);
+  const geometry::PreparedMesh prepared =
+      geometry::inspect_mesh_file(options.input, preparation, display.callback());
+  display.finish();
   print_report(prepared.report, std::cout);
   std::cout.flush();
   if (!options.report_path.empty()) {
     std::ofstream out(options.report_path);
-    out << to_json(prepared.report).dump(2) << '\n';
+    out << mesh_report_json(prepared.report).dump(2) << '\n';
     if (!out)
       throw InputError(options.report_path + ": cannot write the JSON report");
   }
@@ -135,6 +104,7 @@ void register_check_command(CLI::App& app, int& exit_code) {
       ->add_option("--weld-tolerance", options->weld_tolerance,
                    "Merge vertices closer than this fraction of the bounding-box diagonal")
       ->capture_default_str();
+  check->add_flag("--quiet", options->quiet, "No progress on stderr (shown after a second)");
   add_timeout_option(*check);
   check->callback([options, &exit_code] { run_check(*options, exit_code); });
 }

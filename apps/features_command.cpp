@@ -12,18 +12,22 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 
 #include "analysis/measure_features.hpp"
 #include "analysis/stage_times.hpp"
 #include "apps/exit_codes.hpp"
+#include "apps/output/atomic_file.hpp"
 #include "apps/output/csv_writer.hpp"
 #include "apps/output/vti_writer.hpp"
 #include "apps/point_table.hpp"
 #include "apps/progress_display.hpp"
+#include "apps/report/features_report_json.hpp"
 #include "apps/report_text.hpp"
 #include "apps/run_limits.hpp"
 #include "apps/solver_mesh_options.hpp"
 #include "core/errors.hpp"
+#include "core/memory.hpp"
 
 namespace bemshape::apps {
 namespace {
@@ -39,6 +43,7 @@ struct FeaturesOptions {
   std::string points_path;
   std::optional<double> grid_spacing;
   std::string output;
+  std::string report_path;
   std::optional<double> h0;
   double a = 0.2;
   std::optional<double> max_edge;
@@ -89,10 +94,11 @@ void run_features(const FeaturesOptions& options, int& exit_code) {
                      "'; supported: .csv (one row per point), .vti (VTK ImageData, --grid only)");
   if (ext == ".vti" && !grid_mode)
     throw InputError(options.output + ": .vti output needs --grid (scattered --points go to .csv)");
-  if (!options.output.empty()) {
-    const fs::path folder = fs::path(options.output).parent_path();
-    if (!folder.empty() && !fs::is_directory(folder))
-      throw InputError(options.output + ": the folder of -o does not exist");
+  for (const auto& [path, option] : {std::pair{&options.output, "-o"},
+                                     std::pair{&options.report_path, "--report"}}) {
+    const fs::path folder = fs::path(*path).parent_path();
+    if (!path->empty() && !folder.empty() && !fs::is_directory(folder))
+      throw InputError(*path + ": the folder of " + option + " does not exist");
   }
   if (options.threads < 0)
     throw InputError("--threads must be positive, got " + std::to_string(options.threads));
@@ -156,6 +162,14 @@ void run_features(const FeaturesOptions& options, int& exit_code) {
       output::write_csv(options.output, header, rows);
   });
   display.finish();
+  if (!options.report_path.empty()) {
+    const RunFigures figures{omp_get_max_threads(), double(peak_resident_bytes()) / 1e6};
+    const std::optional<std::string> output =
+        options.output.empty() ? std::nullopt : std::optional<std::string>(options.output);
+    output::write_file_atomically(
+        options.report_path,
+        features_report_json(job, result, options.input, output, times, figures).dump(2) + '\n');
+  }
   // h_f and h_p are clamped to 0 where the inverse thickness exceeds 1/a
   // (features/thickness.hpp): counted so that a 0 in the output is not taken for a wall.
   const Eigen::Index clamped = result.clamped_points;
@@ -210,6 +224,9 @@ void register_features_command(CLI::App& app, int& exit_code) {
                   "Evaluate on a regular grid of this spacing over the bounding box");
   cmd->add_option("-o,--output", options->output,
                   "Output: .csv (one row per point; stdout if omitted) or .vti (--grid only)");
+  cmd->add_option("--report", options->report_path,
+                  "Also write a JSON report (parameters, points inside, range of h_f and h_p, "
+                  "solver, timing) to this file");
   cmd->add_option("--h0", options->h0,
                   "Characteristic length: about the smallest wall thickness of interest")
       ->required();

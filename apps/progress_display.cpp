@@ -26,13 +26,14 @@ std::string format_line(const std::string& stage, const char* status, double sta
 
 }  // namespace
 
-ProgressDisplay::ProgressDisplay(bool quiet)
+ProgressDisplay::ProgressDisplay(bool quiet, double silent_seconds)
     : ProgressDisplay(quiet                     ? Mode::quiet
                       : ::isatty(STDERR_FILENO) ? Mode::live
                                                 : Mode::lines,
-                      std::cerr) {}
+                      std::cerr, silent_seconds) {}
 
-ProgressDisplay::ProgressDisplay(Mode mode, std::ostream& out) : mode_(mode), out_(out) {}
+ProgressDisplay::ProgressDisplay(Mode mode, std::ostream& out, double silent_seconds)
+    : mode_(mode), out_(out), silent_seconds_(silent_seconds) {}
 
 ProgressDisplay::~ProgressDisplay() {
   // Unwinding from an error or a cancellation: the current stage did not finish.
@@ -60,7 +61,8 @@ void ProgressDisplay::update(std::string_view stage, double fraction) {
     last_draw_ = {};
   }
   fraction_ = fraction;
-  if (mode_ == Mode::live && seconds(now - last_draw_) >= kRedrawSeconds) {
+  if (mode_ == Mode::live && seconds(now - last_draw_) >= kRedrawSeconds &&
+      seconds(now - start_) >= silent_seconds_) {
     char percent[16];
     std::snprintf(percent, sizeof percent, "%3.0f%%", 100.0 * fraction);
     out_ << '\r' << format_line(stage_, percent, seconds(now - stage_start_), seconds(now - start_))
@@ -80,6 +82,10 @@ void ProgressDisplay::end_stage_locked(const char* status) {
   if (stage_.empty())
     return;
   const auto now = Clock::now();
+  if (seconds(now - start_) < silent_seconds_) {
+    stage_.clear();
+    return;
+  }
   const std::string line =
       format_line(stage_, status, seconds(now - stage_start_), seconds(now - start_));
   if (mode_ == Mode::live)

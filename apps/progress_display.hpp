@@ -6,7 +6,9 @@
 //                  kRedrawSeconds, finished with a newline when the stage changes;
 //   not terminal:  one line per stage when it ends, "  assemble  done  12.3 s  (total 15.0 s)",
 //                  so logs of batch runs stay short;
-//   quiet:         nothing.
+//   quiet:         nothing;
+//   silent_seconds: nothing either until the run has taken that long, so commands that are
+//                  usually quick (`check`) show progress on large inputs only.
 //
 // Safe to call from several threads (a mutex guards the output).
 
@@ -26,10 +28,11 @@ class ProgressDisplay {
  public:
   enum class Mode { quiet, lines, live };
 
-  /// quiet → Mode::quiet; otherwise live if stderr is a terminal, else lines.
-  explicit ProgressDisplay(bool quiet);
+  /// quiet → Mode::quiet; otherwise live if stderr is a terminal, else lines. Nothing is
+  /// shown before `silent_seconds` [s] have passed since construction.
+  explicit ProgressDisplay(bool quiet, double silent_seconds = 0.0);
   /// Writes to `out` in the given mode (tests).
-  ProgressDisplay(Mode mode, std::ostream& out);
+  ProgressDisplay(Mode mode, std::ostream& out, double silent_seconds = 0.0);
   ~ProgressDisplay();
   ProgressDisplay(const ProgressDisplay&) = delete;
   ProgressDisplay& operator=(const ProgressDisplay&) = delete;
@@ -49,6 +52,7 @@ class ProgressDisplay {
 
   Mode mode_;
   std::ostream& out_;
+  double silent_seconds_ = 0.0;
   std::mutex mutex_;
   std::string stage_;
   double fraction_ = 0.0;

@@ -1,24 +1,17 @@
 #pragma once
 // The command-line options that shape the solver mesh and choose the solver, shared by every
 // command that solves (thickness, features, compare), so their names, units and help texts
-// cannot drift apart; and their translation into the library's analysis::SolveOptions.
+// cannot drift apart. Their translation into the library's analysis::SolveOptions is in
+// apps/solver_choice.hpp.
 
 #include <CLI/CLI.hpp>
-#include <cstdint>
 #include <optional>
 #include <string>
 
 #include "analysis/boundary_solve.hpp"
-#include "core/errors.hpp"
+#include "apps/solver_choice.hpp"
 
 namespace bemshape::apps {
-
-/// --solver, --far-field and --tolerance as typed (CLI11 checks the names).
-struct SolverChoiceText {
-  std::string method = "auto";     ///< auto | dense | hmatrix
-  double tolerance = 1e-6;         ///< GMRES relative residual
-  std::string far_field = "auto";  ///< auto | hmatrix | nested
-};
 
 /// Registers --max-edge (the remesher's target edge length [model units]; empty = the
 /// default rule 1.5·a·h0) and --sharp-angle (crease angle of the remesher [degrees]).
@@ -56,44 +49,6 @@ inline void add_solver_choice_options(CLI::App& command, SolverChoiceText& choic
                   "Relative residual the hmatrix solver's GMRES must reach")
       ->check(CLI::Range(1e-14, 0.1))
       ->capture_default_str();
-}
-
-/// The library's solver choice for the typed one. Throws InputError for an unknown name.
-inline analysis::SolverChoice solver_choice(const SolverChoiceText& text) {
-  analysis::SolverChoice choice;
-  if (text.method == "auto")
-    choice.method = analysis::SolverMethod::automatic;
-  else if (text.method == "dense")
-    choice.method = analysis::SolverMethod::dense;
-  else if (text.method == "hmatrix")
-    choice.method = analysis::SolverMethod::hmatrix;
-  else
-    throw InputError("--solver must be auto, dense or hmatrix, got '" + text.method + "'");
-  using FarField = bem::HMatrixSolverOptions::FarField;
-  if (text.far_field == "auto")
-    choice.far_field = FarField::automatic;
-  else if (text.far_field == "hmatrix")
-    choice.far_field = FarField::hmatrix;
-  else if (text.far_field == "nested")
-    choice.far_field = FarField::nested;
-  else
-    throw InputError("--far-field must be auto, hmatrix or nested, got '" + text.far_field + "'");
-  choice.tolerance = text.tolerance;
-  return choice;
-}
-
-/// The options every solving command shares, as the library takes them.
-inline analysis::SolveOptions solve_options(double h0, double a, std::optional<double> max_edge,
-                                            double sharp_angle, const SolverChoiceText& solver,
-                                            std::uint64_t max_memory_bytes) {
-  analysis::SolveOptions options;
-  options.h0 = h0;
-  options.a = a;
-  options.max_edge = max_edge;
-  options.sharp_angle_degrees = sharp_angle;
-  options.solver = solver_choice(solver);
-  options.max_memory_bytes = max_memory_bytes;
-  return options;
 }
 
 }  // namespace bemshape::apps

@@ -8,7 +8,6 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
-#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 
@@ -20,12 +19,12 @@
 #include "apps/output/ply_writer.hpp"
 #include "apps/output/vtp_writer.hpp"
 #include "apps/progress_display.hpp"
+#include "apps/report/thickness_report_json.hpp"
 #include "apps/report_text.hpp"
 #include "apps/run_limits.hpp"
 #include "apps/solver_mesh_options.hpp"
 #include "apps/thickness_html_report.hpp"
 #include "core/errors.hpp"
-#include "core/huge_pages.hpp"
 #include "core/memory.hpp"
 #include "features/thickness.hpp"
 
@@ -67,10 +66,6 @@ std::string seconds_text(double seconds) {
   char buffer[32];
   std::snprintf(buffer, sizeof buffer, "%.2f", seconds);
   return buffer;
-}
-
-nlohmann::json vec(const Eigen::Vector3d& p) {
-  return nlohmann::json::array({p.x(), p.y(), p.z()});
 }
 
 std::string lower_extension(const std::string& path) {
@@ -147,101 +142,6 @@ void write_output(const std::string& path, OutputFormat format, const geometry::
       return;
     }
   }
-}
-
-nlohmann::json region_json(const ThinRegion& r) {
-  return {{"area", r.area},
-          {"min", r.minimum},
-          {"min_location", vec(r.min_location)},
-          {"centroid", vec(r.centroid)},
-          {"faces", r.faces}};
-}
-
-nlohmann::json report_json(const ThicknessOptions& options, double h0,
-                           const ThicknessResult& result, const StageTimes& times, double peak_mb) {
-  const analysis::BoundarySolve& run = result.boundary;
-  const ThicknessStatistics& s = result.statistics;
-  nlohmann::json parameters = {{"h0", h0},
-                               {"a", options.a},
-                               {"kappa", run.solution.parameters.kappa},
-                               {"measure", options.measure},
-                               {"max_edge", run.max_edge},
-                               {"max_edge_rule", run.max_edge_rule},
-                               {"min_thickness", nullptr},
-                               {"threads", omp_get_max_threads()},
-                               {"march", BEMSHAPE_ARCH_NAME}};
-  if (options.min_thickness)
-    parameters["min_thickness"] = *options.min_thickness;
-  nlohmann::json check = nullptr;
-  if (options.min_thickness) {
-    nlohmann::json regions = nlohmann::json::array();
-    for (const ThinRegion& r : result.regions)
-      regions.push_back(region_json(r));
-    check = {{"threshold", *options.min_thickness},
-             {"pass", result.regions.empty()},
-             {"regions", regions}};
-  }
-  nlohmann::json timing = nlohmann::json::object();
-  for (const auto& [stage, seconds] : times.stages())
-    timing[stage] = seconds;
-  timing["total"] = times.elapsed();
-  // Wall seconds of the assembly's stages (the H-matrix path; empty for the dense path).
-  nlohmann::json assembly_stages = nlohmann::json::object();
-  for (const auto& [stage, seconds] : run.solution.report.assembly_stages)
-    assembly_stages[stage] = seconds;
-  nlohmann::json solve_stages = nlohmann::json::object();
-  for (const auto& [stage, seconds] : run.solution.report.solve_stages)
-    solve_stages[stage] = seconds;
-  // Megabytes of the operators' parts, by the same names (empty for the dense path).
-  nlohmann::json operator_parts = nlohmann::json::object();
-  for (const auto& [part, bytes] : run.solution.report.operator_parts)
-    operator_parts[part] = double(bytes) / 1e6;
-  const geometry::MeshReport& input = result.input.report;
-  return {
-      {"bemshape", BEMSHAPE_VERSION},
-      {"command", "thickness"},
-      {"input", options.input},
-      {"units", "lengths in the input file's units"},
-      {"output", options.output.empty() ? nlohmann::json(nullptr) : nlohmann::json(options.output)},
-      {"solver_output", options.solver_output.empty() ? nlohmann::json(nullptr)
-                                                      : nlohmann::json(options.solver_output)},
-      {"parameters", parameters},
-      {"mesh",
-       {{"input_faces", input.faces},
-        {"input_vertices", input.vertices},
-        {"solver_faces", run.solver_mesh.num_faces()},
-        {"solver_vertices", run.solver_mesh.num_vertices()},
-        {"solver_max_edge", run.solver_mesh.max_edge_length()},
-        {"area", input.area},
-        {"volume", input.volume},
-        {"repairs", input.repairs}}},
-      {"thickness",
-       {{"measure", result.measure_column},
-        {"min", s.minimum},
-        {"max", s.maximum},
-        {"mean", s.mean},
-        {"median", s.median},
-        {"p05", s.p05},
-        {"p95", s.p95},
-        {"min_location", vec(s.min_location)},
-        {"measured_area", s.measured_area},
-        {"unmeasurable_area", s.unmeasurable_area},
-        {"clamped_faces", result.clamped_faces}}},
-      {"check", check},
-      {"solver",
-       {{"method", run.solution.report.method},
-        {"unknowns", run.solution.report.unknowns},
-        {"iterations", run.solution.report.iterations},
-        {"gmres_restart", run.solution.report.restart},
-        {"residual", run.solution.report.residual},
-        {"preconditioned_residual", run.solution.report.preconditioned_residual},
-        {"operator_mb", double(run.solution.report.operator_bytes) / 1e6},
-        {"compression", run.solution.report.compression},
-        {"assembly_stages", assembly_stages},
-        {"solve_stages", solve_stages},
-        {"operator_parts_mb", operator_parts}}},
-      {"timing", timing},
-      {"memory", {{"peak_mb", peak_mb}, {"heap_huge_pages", heap_uses_huge_pages()}}}};
 }
 
 /// The parameters table of the HTML report.
@@ -389,9 +289,18 @@ void run_thickness(const ThicknessOptions& options, int& exit_code) {
     });
   display.finish();
   const double peak_mb = double(peak_resident_bytes()) / 1e6;
-  if (!options.report_path.empty())
-    output::write_file_atomically(options.report_path,
-                                  report_json(options, h0, result, times, peak_mb).dump(2) + '\n');
+  if (!options.report_path.empty()) {
+    const ThicknessRunNames names{
+        options.input, options.measure,
+        options.output.empty() ? std::nullopt : std::optional<std::string>(options.output),
+        options.solver_output.empty() ? std::nullopt
+                                      : std::optional<std::string>(options.solver_output)};
+    output::write_file_atomically(
+        options.report_path,
+        thickness_report_json(job, result, names, times, {omp_get_max_threads(), peak_mb})
+                .dump(2) +
+            '\n');
+  }
   print_report(std::cout, options, h0, result, times, peak_mb);
   std::cout.flush();
   exit_code = options.min_thickness && !result.regions.empty() ? kExitCheckFailed : kExitSuccess;

@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <numbers>
 
 #include "geometry/primitive_meshes.hpp"
@@ -36,8 +37,9 @@ TEST_CASE("features --points on the ball: f_h within 1 % of 0.801142, s = A·x, 
            "0.4,0.4,0.1\n";
   }
   const std::string csv = scratch("features.csv");
+  const std::string json = scratch("features.json");
   const Run r = run_bemshape("features '" + mesh + "' --points '" + points + "' --h0 0.3 -o '" +
-                             csv + "' --quiet");
+                             csv + "' --report '" + json + "' --quiet");
   CAPTURE(r.out, r.err);
   REQUIRE(r.exit_code == 0);
   const CsvTable table = parse_csv(slurp(csv));
@@ -57,6 +59,20 @@ TEST_CASE("features --points on the ball: f_h within 1 % of 0.801142, s = A·x, 
       CHECK(table.rows(p, table.column("h_p")) == 0.0);
     }
   }
+  // The JSON report: the points counted by the geometry, h_f = h0(1/f_h − a) of the closed
+  // form over the inside points.
+  const nlohmann::json report = read_json(json);
+  CHECK(report["command"] == "features");
+  CHECK(report["output"] == csv);
+  CHECK(report["parameters"]["h0"] == 0.3);
+  CHECK(report["parameters"]["kappa"].get<double>() == Approx(2.0 / (0.2 * 0.3)));
+  CHECK(report["points"]["count"] == 7);
+  CHECK(report["points"]["inside"] == 5);
+  CHECK(report["points"]["grid"].is_null());
+  const double h_f = kParameters.h0 * (1.0 / f_h - kParameters.a);
+  CHECK(report["features"]["h_f"]["min"].get<double>() == Approx(h_f).epsilon(0.02));
+  CHECK(report["features"]["h_f"]["max"].get<double>() == Approx(h_f).epsilon(0.02));
+  CHECK(report["timing"]["solve"].get<double>() >= 0.0);
   // Without -o the table goes to stdout.
   const Run to_stdout =
       run_bemshape("features '" + mesh + "' --points '" + points + "' --h0 0.3 --quiet");

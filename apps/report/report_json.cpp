@@ -1,0 +1,71 @@
+#include "apps/report/report_json.hpp"
+
+#include "core/huge_pages.hpp"
+
+namespace bemshape::apps {
+
+nlohmann::json point_json(const Eigen::Vector3d& p) {
+  return nlohmann::json::array({p.x(), p.y(), p.z()});
+}
+
+nlohmann::json report_header(const std::string& command, const std::string& input) {
+  return {{"bemshape", BEMSHAPE_VERSION},
+          {"command", command},
+          {"input", input},
+          {"units", "lengths in the input file's units"}};
+}
+
+nlohmann::json mesh_json(const geometry::MeshReport& input, const analysis::BoundarySolve& run) {
+  return {{"input_faces", input.faces},
+          {"input_vertices", input.vertices},
+          {"solver_faces", run.solver_mesh.num_faces()},
+          {"solver_vertices", run.solver_mesh.num_vertices()},
+          {"solver_max_edge", run.solver_mesh.max_edge_length()},
+          {"area", input.area},
+          {"volume", input.volume},
+          {"repairs", input.repairs}};
+}
+
+nlohmann::json solver_json(const analysis::BoundarySolve& run) {
+  const auto& report = run.solution.report;
+  // Wall seconds of the assembly's and the solve's stages, megabytes of the operators' parts
+  // (the H-matrix path; empty for the dense path).
+  nlohmann::json assembly_stages = nlohmann::json::object();
+  for (const auto& [stage, seconds] : report.assembly_stages)
+    assembly_stages[stage] = seconds;
+  nlohmann::json solve_stages = nlohmann::json::object();
+  for (const auto& [stage, seconds] : report.solve_stages)
+    solve_stages[stage] = seconds;
+  nlohmann::json operator_parts = nlohmann::json::object();
+  for (const auto& [part, bytes] : report.operator_parts)
+    operator_parts[part] = double(bytes) / 1e6;
+  return {{"method", report.method},
+          {"unknowns", report.unknowns},
+          {"iterations", report.iterations},
+          {"gmres_restart", report.restart},
+          {"residual", report.residual},
+          {"preconditioned_residual", report.preconditioned_residual},
+          {"operator_mb", double(report.operator_bytes) / 1e6},
+          {"compression", report.compression},
+          {"assembly_stages", assembly_stages},
+          {"solve_stages", solve_stages},
+          {"operator_parts_mb", operator_parts}};
+}
+
+nlohmann::json timing_json(const analysis::StageTimes& times) {
+  nlohmann::json timing = nlohmann::json::object();
+  for (const auto& [stage, seconds] : times.stages())
+    timing[stage] = seconds;
+  timing["total"] = times.elapsed();
+  return timing;
+}
+
+nlohmann::json memory_json(const RunFigures& run) {
+  return {{"peak_mb", run.peak_mb}, {"heap_huge_pages", heap_uses_huge_pages()}};
+}
+
+const char* build_march() {
+  return BEMSHAPE_ARCH_NAME;
+}
+
+}  // namespace bemshape::apps

@@ -1,0 +1,68 @@
+#include "apps/report/thickness_report_json.hpp"
+
+namespace bemshape::apps {
+namespace {
+
+nlohmann::json optional_text(const std::optional<std::string>& text) {
+  return text ? nlohmann::json(*text) : nlohmann::json(nullptr);
+}
+
+nlohmann::json region_json(const analysis::ThinRegion& r) {
+  return {{"area", r.area},
+          {"min", r.minimum},
+          {"min_location", point_json(r.min_location)},
+          {"centroid", point_json(r.centroid)},
+          {"faces", r.faces}};
+}
+
+}  // namespace
+
+nlohmann::json thickness_report_json(const analysis::ThicknessOptions& options,
+                                     const analysis::ThicknessResult& result,
+                                     const ThicknessRunNames& names,
+                                     const analysis::StageTimes& times, const RunFigures& run) {
+  const analysis::BoundarySolve& solve = result.boundary;
+  const analysis::ThicknessStatistics& s = result.statistics;
+  nlohmann::json parameters = {{"h0", options.solve.h0},
+                               {"a", options.solve.a},
+                               {"kappa", solve.solution.parameters.kappa},
+                               {"measure", names.measure},
+                               {"max_edge", solve.max_edge},
+                               {"max_edge_rule", solve.max_edge_rule},
+                               {"min_thickness", nullptr},
+                               {"threads", run.threads},
+                               {"march", build_march()}};
+  nlohmann::json check = nullptr;
+  if (options.min_thickness) {
+    parameters["min_thickness"] = *options.min_thickness;
+    nlohmann::json regions = nlohmann::json::array();
+    for (const analysis::ThinRegion& r : result.regions)
+      regions.push_back(region_json(r));
+    check = {{"threshold", *options.min_thickness},
+             {"pass", result.regions.empty()},
+             {"regions", regions}};
+  }
+  nlohmann::json report = report_header("thickness", names.input);
+  report["output"] = optional_text(names.output);
+  report["solver_output"] = optional_text(names.solver_output);
+  report["parameters"] = parameters;
+  report["mesh"] = mesh_json(result.input.report, solve);
+  report["thickness"] = {{"measure", result.measure_column},
+                         {"min", s.minimum},
+                         {"max", s.maximum},
+                         {"mean", s.mean},
+                         {"median", s.median},
+                         {"p05", s.p05},
+                         {"p95", s.p95},
+                         {"min_location", point_json(s.min_location)},
+                         {"measured_area", s.measured_area},
+                         {"unmeasurable_area", s.unmeasurable_area},
+                         {"clamped_faces", result.clamped_faces}};
+  report["check"] = check;
+  report["solver"] = solver_json(solve);
+  report["timing"] = timing_json(times);
+  report["memory"] = memory_json(run);
+  return report;
+}
+
+}  // namespace bemshape::apps
