@@ -13,6 +13,15 @@
 
 namespace bemshape::analysis {
 
+/// The triangles F over the vertices V welded, validated and repaired as far as is safe, with
+/// the report of every problem and repair (geometry::inspect_triangle_soup): what `bemshape
+/// check` gives for a file. Does not throw for mesh defects (check report.usable()); throws
+/// InputError for indices out of range and non-finite positions. V and F as below.
+geometry::PreparedMesh inspect_triangles(const Eigen::Ref<const Eigen::MatrixX3d>& V,
+                                         const Eigen::Ref<const Eigen::MatrixX3i>& F,
+                                         const std::string& name = "triangles",
+                                         const ProgressCallback& progress = {});
+
 /// The prepared mesh of the triangles F over the vertices V:
 ///   V: #V×3 vertex positions [model units], finite;
 ///   F: #F×3 vertex indices into V (0-based), each in [0, #V).

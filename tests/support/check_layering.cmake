@@ -1,17 +1,18 @@
 # Fails if an #include runs against the layering of the modules (docs/architecture.md):
 #
-#   core ← linalg, geometry, features ← bem, fem ← analysis ← apps
+#   core ← linalg, geometry, features ← bem, fem ← analysis ← apps ← python
 #
 # each module including only itself and the modules below it:
 #   core: core            linalg: core               geometry: core
 #   features: core        bem: linalg, geometry      fem: linalg, features, geometry
-#   analysis: bem, fem, features, geometry, linalg   apps: everything
+#   analysis: bem, fem, features, geometry, linalg   apps: everything below it
+#   python (the Python module, a front end beside apps/ that shares its reports): everything
 # and, inside bem/, the stages in the order the data flows:
 #   kernels ← quadrature ← operators ← hmatrix ← solve ← evaluate.
 # It also fails if a library module (everything below apps/) includes a command-line parser
 # or writes to the terminal: they report progress through a callback and errors as
 # exceptions. Usage: cmake -DSOURCE_ROOT=<project dir> -P check_layering.cmake
-set(modules core linalg geometry features bem fem analysis apps)
+set(modules core linalg geometry features bem fem analysis apps python)
 set(allowed_core core)
 set(allowed_linalg linalg core)
 set(allowed_geometry geometry core)
@@ -20,6 +21,7 @@ set(allowed_bem bem linalg geometry core)
 set(allowed_fem fem linalg features geometry core)
 set(allowed_analysis analysis bem fem features geometry linalg core)
 set(allowed_apps apps analysis bem fem features geometry linalg core)
+set(allowed_python python apps analysis bem fem features geometry linalg core)
 set(bem_stages kernels quadrature operators hmatrix solve evaluate)
 list(JOIN bem_stages " " bem_stage_names)
 
