@@ -40,8 +40,9 @@ void register_mesh_functions(py::module_& module) {
   module.def("read_mesh", &read_mesh, py::arg("path"),
              R"(read_mesh(path) -> (V, F)
 
-The triangles of a mesh file (.stl ASCII or binary, .obj, .off, .ply) as stored in it:
-V, float64 array (n, 3) of vertex positions in the file's units; F, int64 array (m, 3) of
+The triangles of a mesh file (.stl ASCII or binary, .obj, .off, .ply, .3mf) as stored in it:
+V, float64 array (n, 3) of vertex positions in the file's units (3MF: every build item with
+its transforms, in the unit the file records, not converted); F, int64 array (m, 3) of
 0-based vertex indices (polygons split into triangle fans). Nothing is welded or repaired
 here: thickness(), features() and check() do that. Raises ValueError (bemshape.InputError)
 for a file that cannot be read, naming the file and the problem.)");
