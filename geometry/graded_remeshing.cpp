@@ -1,0 +1,148 @@
+#include "geometry/graded_remeshing.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <sstream>
+
+#include "core/cancellation.hpp"
+#include "core/errors.hpp"
+#include "geometry/detail/cgal_graded_remeshing.hpp"
+
+namespace bemshape::geometry {
+namespace {
+
+constexpr double kDegree = std::numbers::pi / 180.0;
+
+/// An output face with a smallest angle below this [degrees] counts as degenerate: it is a
+/// failure of the remesher (whose guards keep angles far above it), reported as such.
+constexpr double kDegenerateAngleDegrees = 1e-3;
+
+double min_angle_degrees(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                         const Eigen::Vector3d& c) {
+  const Eigen::Vector3d p[3] = {a, b, c};
+  double smallest = 180.0;
+  for (int k = 0; k < 3; ++k) {
+    const Eigen::Vector3d u = p[(k + 1) % 3] - p[k], w = p[(k + 2) % 3] - p[k];
+    smallest = std::min(smallest, std::atan2(u.cross(w).norm(), u.dot(w)) / kDegree);
+  }
+  return smallest;
+}
+
+}  // namespace
+
+GradedMesh remesh_to_size_field(const SurfaceMesh& mesh, const SurfaceCreases& creases,
+                                const MeshSizeField& field, const GradedRemeshingOptions& options,
+                                const ProgressCallback& progress) {
+  if (mesh.empty())
+    throw InputError("cannot remesh an empty mesh");
+  throw_if_cancelled();
+  report_progress(progress, "remeshing", 0.0);
+  detail::GradedRemeshInput input;
+  input.vertices = &mesh.vertices();
+  input.faces = &mesh.faces();
+  input.creases.reserve(creases.creases.size());
+  for (const DihedralEdge& c : creases.creases)
+    input.creases.push_back({c.a, c.b});
+  input.corner = &creases.corner;
+  input.face_patch = &creases.face_patch;
+  input.patches = creases.patches;
+  input.size = [&field](const Eigen::Vector3d& x) { return field.size(x); };
+  input.iterations = options.iterations;
+  input.min_angle = options.min_angle_degrees * kDegree;
+  input.max_normal_turn = options.max_normal_turn_degrees * kDegree;
+  input.max_faces = options.max_faces;
+  input.progress = [&progress](double fraction) {
+    throw_if_cancelled();
+    report_progress(progress, "remeshing", fraction);
+  };
+  detail::GradedRemeshOutput out = detail::cgal_graded_remesh(input);
+
+  GradedMesh result{SurfaceMesh(std::move(out.vertices), std::move(out.faces)), {}};
+  GradedMeshReport& r = result.report;
+  const SurfaceMesh& m = result.mesh;
+  r.faces = m.num_faces();
+  r.vertices = m.num_vertices();
+  r.creases = static_cast<int>(creases.creases.size());
+  r.smoothed_edges = creases.smoothed_edges();
+  r.splits = out.splits;
+  r.collapses = out.collapses;
+  r.flips = out.flips;
+  r.moves = out.moves;
+  r.field = field.summary();
+  r.min_edge = std::numeric_limits<double>::infinity();
+  r.min_edge_ratio = std::numeric_limits<double>::infinity();
+  r.min_angle_degrees = 180.0;
+  double edge_sum = 0.0;
+  for (Eigen::Index f = 0; f < m.num_faces(); ++f) {
+    const double angle = min_angle_degrees(m.corner(f, 0), m.corner(f, 1), m.corner(f, 2));
+    if (angle < kDegenerateAngleDegrees) {
+      std::ostringstream msg;
+      msg << "bemshape's remeshing made a degenerate triangle (smallest angle " << angle
+          << "°) at " << m.face_centroids().row(f)
+          << "; this is a defect of the remesher, not of the input: please report it with the "
+             "input file";
+      throw InternalError(msg.str());
+    }
+    r.min_angle_degrees = std::min(r.min_angle_degrees, angle);
+    const auto [size, reason] = field.size_and_reason(m.face_centroids().row(f).transpose());
+    (void)size;
+    r.area_by_reason[static_cast<std::size_t>(reason)] += m.face_areas()(f);
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector3d a = m.corner(f, k), b = m.corner(f, (k + 1) % 3);
+      const double length = (b - a).norm();
+      edge_sum += length;
+      r.min_edge = std::min(r.min_edge, length);
+      r.max_edge = std::max(r.max_edge, length);
+      const double ratio = length / field.size(0.5 * (a + b));
+      r.min_edge_ratio = std::min(r.min_edge_ratio, ratio);
+      r.max_edge_ratio = std::max(r.max_edge_ratio, ratio);
+    }
+  }
+  r.mean_edge = edge_sum / (3.0 * static_cast<double>(std::max<Eigen::Index>(m.num_faces(), 1)));
+  report_progress(progress, "remeshing", 1.0);
+  return result;
+}
+
+GradedMesh graded_solver_mesh(const SurfaceMesh& mesh, const GradedMeshParameters& p,
+                              const ProgressCallback& progress) {
+  if (!(std::isfinite(p.h0) && p.h0 > 0.0))
+    throw InputError("graded solver mesh: h0 must be a positive length");
+  CreaseOptions crease_options;
+  crease_options.crease_angle_degrees = p.crease_angle_degrees;
+  crease_options.smooth_angle_degrees = p.smooth_angle_degrees;
+  crease_options.chord_tolerance = p.chord_tolerance_ratio * p.h0;
+  crease_options.min_chord = p.fine_edge;
+  const SurfaceCreases creases = find_surface_creases(mesh, crease_options);
+  SizeFieldParameters field_parameters;
+  field_parameters.fine_edge = p.fine_edge;
+  field_parameters.max_edge = std::max(p.max_edge_ratio * p.h0, p.fine_edge);
+  field_parameters.gradation = p.gradation;
+  field_parameters.thin_wall = p.thin_wall_ratio * p.h0;
+  field_parameters.sample_spacing = kThicknessSampleSpacing * p.h0;
+  const MeshSizeField field(mesh, creases, field_parameters);
+  return remesh_to_size_field(mesh, creases, field, p.remeshing, progress);
+}
+
+GradedMesh uniform_solver_mesh(const SurfaceMesh& mesh, double edge, double crease_angle_degrees,
+                               const GradedRemeshingOptions& options,
+                               const ProgressCallback& progress) {
+  if (!(std::isfinite(edge) && edge > 0.0)) {
+    std::ostringstream msg;
+    msg << "target edge length " << edge << " must be a positive number";
+    throw InputError(msg.str());
+  }
+  CreaseOptions crease_options;
+  crease_options.crease_angle_degrees = crease_angle_degrees;
+  const SurfaceCreases creases = find_surface_creases(mesh, crease_options);
+  SizeFieldParameters field_parameters;
+  field_parameters.fine_edge = edge;
+  field_parameters.max_edge = edge;
+  field_parameters.curvature_ratio = 0.0;
+  field_parameters.refine_creases = false;
+  const MeshSizeField field(mesh, creases, field_parameters);
+  return remesh_to_size_field(mesh, creases, field, options, progress);
+}
+
+}  // namespace bemshape::geometry
