@@ -71,36 +71,45 @@ GradedMesh remesh_to_size_field(const SurfaceMesh& mesh, const SurfaceCreases& c
   r.flips = out.flips;
   r.moves = out.moves;
   r.field = field.summary();
-  r.min_edge = std::numeric_limits<double>::infinity();
-  r.min_edge_ratio = std::numeric_limits<double>::infinity();
-  r.min_angle_degrees = 180.0;
-  double edge_sum = 0.0;
-  for (Eigen::Index f = 0; f < m.num_faces(); ++f) {
-    const double angle = min_angle_degrees(m.corner(f, 0), m.corner(f, 1), m.corner(f, 2));
-    if (angle < kDegenerateAngleDegrees) {
-      std::ostringstream msg;
-      msg << "bemshape's remeshing made a degenerate triangle (smallest angle " << angle
-          << "°) at " << m.face_centroids().row(f)
-          << "; this is a defect of the remesher, not of the input: please report it with the "
-             "input file";
-      throw InternalError(msg.str());
-    }
-    r.min_angle_degrees = std::min(r.min_angle_degrees, angle);
-    const auto [size, reason] = field.size_and_reason(m.face_centroids().row(f).transpose());
-    (void)size;
-    r.area_by_reason[static_cast<std::size_t>(reason)] += m.face_areas()(f);
+  // Per face: smallest angle, the reason of the size at the centroid, the edges' lengths
+  // against h at their midpoints (each edge twice, once from each face).
+  const Eigen::Index nf = m.num_faces();
+  Eigen::VectorXd angle(nf), shortest(nf), longest(nf), low(nf), high(nf), perimeter(nf);
+  Eigen::VectorXi reason(nf);
+#pragma omp parallel for schedule(static)
+  for (Eigen::Index f = 0; f < nf; ++f) {
+    angle(f) = min_angle_degrees(m.corner(f, 0), m.corner(f, 1), m.corner(f, 2));
+    reason(f) = static_cast<int>(field.size_and_reason(m.face_centroids().row(f).transpose()).second);
+    shortest(f) = low(f) = std::numeric_limits<double>::infinity();
+    longest(f) = high(f) = perimeter(f) = 0.0;
     for (int k = 0; k < 3; ++k) {
       const Eigen::Vector3d a = m.corner(f, k), b = m.corner(f, (k + 1) % 3);
       const double length = (b - a).norm();
-      edge_sum += length;
-      r.min_edge = std::min(r.min_edge, length);
-      r.max_edge = std::max(r.max_edge, length);
       const double ratio = length / field.size(0.5 * (a + b));
-      r.min_edge_ratio = std::min(r.min_edge_ratio, ratio);
-      r.max_edge_ratio = std::max(r.max_edge_ratio, ratio);
+      perimeter(f) += length;
+      shortest(f) = std::min(shortest(f), length);
+      longest(f) = std::max(longest(f), length);
+      low(f) = std::min(low(f), ratio);
+      high(f) = std::max(high(f), ratio);
     }
   }
-  r.mean_edge = edge_sum / (3.0 * static_cast<double>(std::max<Eigen::Index>(m.num_faces(), 1)));
+  Eigen::Index worst = 0;
+  r.min_angle_degrees = nf > 0 ? angle.minCoeff(&worst) : 180.0;
+  if (r.min_angle_degrees < kDegenerateAngleDegrees) {
+    std::ostringstream msg;
+    msg << "bemshape's remeshing made a degenerate triangle (smallest angle "
+        << r.min_angle_degrees << "°) at " << m.face_centroids().row(worst)
+        << "; this is a defect of the remesher, not of the input: please report it with the "
+           "input file";
+    throw InternalError(msg.str());
+  }
+  for (Eigen::Index f = 0; f < nf; ++f)
+    r.area_by_reason[static_cast<std::size_t>(reason(f))] += m.face_areas()(f);
+  r.min_edge = shortest.minCoeff();
+  r.max_edge = longest.maxCoeff();
+  r.min_edge_ratio = low.minCoeff();
+  r.max_edge_ratio = high.maxCoeff();
+  r.mean_edge = perimeter.sum() / (3.0 * static_cast<double>(std::max<Eigen::Index>(nf, 1)));
   report_progress(progress, "remeshing", 1.0);
   return result;
 }

@@ -57,6 +57,11 @@ constexpr double kCollapseRatio = 4.0 / 5.0;
 /// Split passes per iteration: each halves the longest edges, so an edge 2^k times too long
 /// needs k; CAD slivers 10^3 times longer than h need 10.
 constexpr int kMaxSplitPasses = 40;
+/// Passes of Lawson's Delaunay flips at the start (each pass flips every edge that is not
+/// locally Delaunay once; a plate's CAD slivers need a few dozen).
+constexpr int kDelaunayPasses = 100;
+/// Margin [rad] by which the opposite angles must exceed π for a Delaunay flip.
+constexpr double kDelaunayMargin = 1e-9;
 /// Flip passes per iteration (a flip changes the valences the next flip sees).
 constexpr int kFlipPasses = 3;
 /// Rescue of the faces below the angle bound after the iterations: passes, the edge length a
@@ -68,6 +73,8 @@ constexpr int kRescueSamples = 20;
 /// A patch whose input faces are coplanar to this tolerance [rad, and fraction of the
 /// diagonal for the offsets] is projected onto its plane instead of through an AABB tree.
 constexpr double kCoplanarTolerance = 1e-12;
+/// A moved vertex's size is evaluated again after it moved by this fraction of it.
+constexpr double kSizeRefresh = 0.05;
 
 enum VertexKind : unsigned char { kFree = 0, kChain = 1, kCorner = 2 };
 
@@ -144,6 +151,12 @@ class Remesher {
   GradedRemeshOutput run() {
     const unsigned iterations = std::max(in_.iterations, 1u);
     const double steps = iterations + 1.0;
+    // Start from the creases at their size and a Delaunay triangulation of them: splitting
+    // the long edges of CAD slivers directly cascades (a 128-facet tube's 80 mm strips took a
+    // million splits and as many collapses), while a strip between two split creases is
+    // already triangulated well by its Delaunay flips.
+    split_long_edges(true);
+    delaunay_flips();
     for (unsigned it = 0; it < iterations; ++it) {
       split_long_edges();
       collapse_short_edges();
@@ -180,8 +193,10 @@ class Remesher {
     kind_ = mesh_.add_property_map<VertexIndex, unsigned char>("v:kind", kFree).first;
     vpatch_ = mesh_.add_property_map<VertexIndex, int>("v:patch", -1).first;
     size_ = mesh_.add_property_map<VertexIndex, double>("v:size", 0.0).first;
+    sized_at_ = mesh_.add_property_map<VertexIndex, Vec3>("v:sized_at", Vec3::Zero()).first;
     crease_ = mesh_.add_property_map<EdgeIndex, bool>("e:crease", false).first;
     fpatch_ = mesh_.add_property_map<FaceIndex, int>("f:patch", -1).first;
+    valence_target_ = mesh_.add_property_map<VertexIndex, int>("v:valence", 6).first;
     for (Eigen::Index f = 0; f < F.rows(); ++f) {
       const FaceIndex fi = mesh_.add_face(vh[static_cast<std::size_t>(F(f, 0))],
                                           vh[static_cast<std::size_t>(F(f, 1))],
@@ -211,6 +226,7 @@ class Remesher {
       }
       vpatch_[vi] = fpatch_[mesh_.face(mesh_.halfedge(vi))];
       size_[vi] = in_.size(V.row(v).transpose());
+      sized_at_[vi] = V.row(v).transpose();
     }
     // The input surface of each patch.
     double diagonal = 0.0;
@@ -250,9 +266,20 @@ class Remesher {
     return unit_normal(pos(mesh_.source(h)), pos(mesh_.target(h)),
                        pos(mesh_.target(mesh_.next(h))));
   }
+  /// Moves v to x; its size is evaluated again once it has moved by kSizeRefresh of it since
+  /// the last evaluation (h is (g − 1)-Lipschitz, so the cached value is then within
+  /// (g − 1)·kSizeRefresh of h(x)).
   void set_position(VertexIndex v, const Vec3& x) {
     mesh_.point(v) = point(x);
+    if ((x - sized_at_[v]).norm() > kSizeRefresh * size_[v]) {
+      size_[v] = in_.size(x);
+      sized_at_[v] = x;
+    }
+  }
+  void set_new_position(VertexIndex v, const Vec3& x) {
+    mesh_.point(v) = point(x);
     size_[v] = in_.size(x);
+    sized_at_[v] = x;
   }
 
   /// Is the triangle (a, b, c), replacing a face of unit normal `old_normal` whose angles
@@ -267,10 +294,14 @@ class Remesher {
 
   // ---- split -----------------------------------------------------------------------------
 
-  void split_long_edges() {
+  /// Splits every edge longer than kSplitRatio·h (only the crease edges if creases_only)
+  /// until none is left.
+  void split_long_edges(bool creases_only = false) {
     for (int pass = 0; pass < kMaxSplitPasses; ++pass) {
       std::vector<std::pair<double, EdgeIndex>> long_edges;
       for (EdgeIndex e : mesh_.edges()) {
+        if (creases_only && !crease_[e])
+          continue;
         const HalfedgeIndex h = mesh_.halfedge(e);
         const double ratio =
             length(h) / target(mesh_.source(h), mesh_.target(h));
@@ -307,7 +338,7 @@ class Remesher {
     crease_[mesh_.edge(hnew)] = crease;
     kind_[v] = crease ? kChain : kFree;
     vpatch_[v] = patch0;
-    set_position(v, x);
+    set_new_position(v, x);
     // The two quadrilaterals (a, v, b, c) and (b, v, a, d) become two triangles each.
     const HalfedgeIndex top = CGAL::Euler::split_face(hnew, mesh_.next(mesh_.next(hnew)), mesh_);
     fpatch_[mesh_.face(top)] = patch0;
@@ -328,8 +359,6 @@ class Remesher {
     const VertexIndex remove = mesh_.source(h), keep = mesh_.target(h);
     const EdgeIndex e = mesh_.edge(h);
     if (kind_[remove] == kCorner || (kind_[remove] == kChain && !crease_[e]))
-      return -1.0;
-    if (!CGAL::Euler::does_satisfy_link_condition(e, mesh_))
       return -1.0;
     const Vec3 x = pos(keep);
     const HalfedgeIndex into_remove = mesh_.opposite(h);
@@ -353,6 +382,8 @@ class Remesher {
       if ((a - x).norm() > length_ratio * target(keep, p))
         return -1.0;
     }
+    if (!CGAL::Euler::does_satisfy_link_condition(e, mesh_))
+      return -1.0;
     return new_min;
   }
 
@@ -395,11 +426,13 @@ class Remesher {
     const unsigned char kind = kind_[keep];
     const int patch = vpatch_[keep];
     const double size = size_[keep];
+    const Vec3 sized_at = sized_at_[keep];
     const VertexIndex kept = CGAL::Euler::collapse_edge(mesh_.edge(h), mesh_);
     mesh_.point(kept) = x;
     kind_[kept] = kind;
     vpatch_[kept] = patch;
     size_[kept] = size;
+    sized_at_[kept] = sized_at;
     crease_[mesh_.edge(mesh_.halfedge(kept, top))] = top_crease;
     crease_[mesh_.edge(mesh_.halfedge(kept, bottom))] = bottom_crease;
     (void)remove;
@@ -424,6 +457,9 @@ class Remesher {
   /// bound. Returns the number of flips.
   long flip_edges(bool rescue_only) {
     long flips = 0;
+    if (!rescue_only)
+      for (VertexIndex v : mesh_.vertices())
+        valence_target_[v] = ideal_valence(v);
     for (EdgeIndex e : mesh_.edges()) {
       if (crease_[e])
         continue;
@@ -445,8 +481,8 @@ class Remesher {
       if (old_min < in_.min_angle && new_min > old_min) {
         flip = true;  // rescue a bad triangle
       } else if (!rescue_only) {
-        const int ta = ideal_valence(a), tb = ideal_valence(b);
-        const int tc = ideal_valence(c), td = ideal_valence(d);
+        const int ta = valence_target_[a], tb = valence_target_[b];
+        const int tc = valence_target_[c], td = valence_target_[d];
         const int degree_c = static_cast<int>(mesh_.degree(c));
         const int degree_d = static_cast<int>(mesh_.degree(d));
         auto square = [](int x) { return x * x; };
@@ -471,6 +507,45 @@ class Remesher {
     }
     flips_ += flips;
     return flips;
+  }
+
+  /// Lawson's flips towards the Delaunay triangulation of each patch: an edge whose two
+  /// opposite angles sum to more than π (plus a margin against flipping back and forth on
+  /// cocircular points) is flipped, under the same normal guard as every flip.
+  void delaunay_flips() {
+    for (int pass = 0; pass < kDelaunayPasses; ++pass) {
+      long flips = 0;
+      for (EdgeIndex e : mesh_.edges()) {
+        if (crease_[e])
+          continue;
+        const HalfedgeIndex h = mesh_.halfedge(e), o = mesh_.opposite(h);
+        const VertexIndex a = mesh_.source(h), b = mesh_.target(h);
+        const VertexIndex c = mesh_.target(mesh_.next(h)), d = mesh_.target(mesh_.next(o));
+        if (c == d || mesh_.halfedge(c, d) != Mesh::null_halfedge() || mesh_.degree(a) <= 3 ||
+            mesh_.degree(b) <= 3)
+          continue;
+        const Vec3 pa = pos(a), pb = pos(b), pc = pos(c), pd = pos(d);
+        auto angle = [](const Vec3& apex, const Vec3& p, const Vec3& q) {
+          const Vec3 u = p - apex, w = q - apex;
+          return std::atan2(u.cross(w).norm(), u.dot(w));
+        };
+        if (angle(pc, pa, pb) + angle(pd, pa, pb) <= std::numbers::pi + kDelaunayMargin)
+          continue;
+        const Vec3 n0 = face_normal(mesh_.face(h)), n1 = face_normal(mesh_.face(o));
+        const Vec3 m0 = unit_normal(pc, pa, pd), m1 = unit_normal(pd, pb, pc);
+        if (m0.squaredNorm() == 0.0 || m1.squaredNorm() == 0.0 || m0.dot(n0) < cos_turn_ ||
+            m0.dot(n1) < cos_turn_ || m1.dot(n0) < cos_turn_ || m1.dot(n1) < cos_turn_)
+          continue;
+        const int patch = fpatch_[mesh_.face(h)];
+        CGAL::Euler::flip_edge(h, mesh_);
+        fpatch_[mesh_.face(h)] = patch;
+        fpatch_[mesh_.face(mesh_.opposite(h))] = patch;
+        ++flips;
+      }
+      flips_ += flips;
+      if (flips == 0)
+        return;
+    }
   }
 
   // ---- relaxation ------------------------------------------------------------------------
@@ -693,6 +768,8 @@ class Remesher {
   Mesh::Property_map<VertexIndex, unsigned char> kind_;
   Mesh::Property_map<VertexIndex, int> vpatch_;
   Mesh::Property_map<VertexIndex, double> size_;
+  Mesh::Property_map<VertexIndex, Vec3> sized_at_;  // where size_ was evaluated
+  Mesh::Property_map<VertexIndex, int> valence_target_;
   Mesh::Property_map<EdgeIndex, bool> crease_;
   Mesh::Property_map<FaceIndex, int> fpatch_;
   std::vector<PatchSurface> surfaces_;
