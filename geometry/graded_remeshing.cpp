@@ -129,6 +129,9 @@ GradedMesh graded_solver_mesh(const SurfaceMesh& mesh, const GradedMeshParameter
   field_parameters.max_edge = std::max(p.max_edge_ratio * p.h0, p.fine_edge);
   field_parameters.gradation = p.gradation;
   field_parameters.thin_wall = p.thin_wall_ratio * p.h0;
+  field_parameters.wall_thickness_ratio = p.wall_thickness_ratio;
+  field_parameters.curvature_ratio = p.curvature_ratio;
+  field_parameters.crease_spacing_ratio = p.crease_spacing_ratio;
   field_parameters.sample_spacing = kThicknessSampleSpacing * p.h0;
   const MeshSizeField field(mesh, creases, field_parameters);
   return remesh_to_size_field(mesh, creases, field, p.remeshing, progress);

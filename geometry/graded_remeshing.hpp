@@ -88,6 +88,9 @@ struct GradedMeshParameters {
   double gradation = kDefaultGradation;
   /// t_thin = this·h0: walls thinner than that get h_f.
   double thin_wall_ratio = 1.0;
+  double wall_thickness_ratio = kWallThicknessEdgeRatio;  ///< c_t
+  double curvature_ratio = kCurvatureEdgeRatio;           ///< c_ρ
+  double crease_spacing_ratio = kCreaseSpacingEdgeRatio;  ///< c_l
   double crease_angle_degrees = 1.0;  ///< θ_c (--sharp-angle)
   /// θ_s: facet angles of tessellated smooth surfaces up to this may be smoothed
   /// (surface_creases.hpp); 0 keeps every crease. TODO-measured.
