@@ -3,7 +3,8 @@
 //
 //   bench_graded_mesh [OPTIONS] [PART ...]
 //
-// PART is a labelled part (geometry/labelled_parts.hpp; h0 = 0.9 × its nominal wall) or
+// PART is a labelled part (geometry/labelled_parts.hpp; h0 = 0.9 × its nominal wall, read as
+// its STL export would be: welded, validated, repaired) or
 // FILE:H0 (a mesh file and its h0). Without parts: every labelled part and
 // tests/data/meshes/plate_holes.STL at h0 = 0.9 × 12.7.
 //
@@ -12,9 +13,7 @@
 //   --gradation G
 //   --smooth-angle D      θ_s [degrees] (0: keep every crease)
 //   --chord C             δ = C·h0
-//   --uniform cgal|graded|none   the uniform reference mesh: CGAL's isotropic remeshing
-//                         (refine_to_edge_length, the present default), this remesher with a
-//                         constant field, or none (default cgal)
+//   --no-uniform          skip the uniform mesh (geometry::refine_uniformly)
 //   --uniform-edge E      edge of the uniform mesh as a multiple of h0 (default 0.3 = 1.5·a·h0)
 //   --write DIR           write each mesh as DIR/<part>-uniform.stl and DIR/<part>-graded.stl
 //
@@ -31,7 +30,7 @@
 #include <vector>
 
 #include "apps/output/stl_writer.hpp"
-#include "bem/transmission_parameters.hpp"
+#include "bem/kernels/transmission_parameters.hpp"
 #include "core/errors.hpp"
 #include "geometry/closest_point.hpp"
 #include "geometry/graded_remeshing.hpp"
@@ -138,7 +137,7 @@ Part labelled_part(const std::string& name) {
 
 int main(int argc, char** argv) {
   geometry::GradedMeshParameters graded;
-  std::string uniform = "cgal";
+  bool uniform = true;
   double uniform_edge_ratio = -1.0;
   std::string write_dir;
   std::vector<Part> parts;
@@ -159,8 +158,8 @@ int main(int argc, char** argv) {
       graded.smooth_angle_degrees = std::stod(value());
     else if (arg == "--chord")
       graded.chord_tolerance_ratio = std::stod(value());
-    else if (arg == "--uniform")
-      uniform = value();
+    else if (arg == "--no-uniform")
+      uniform = false;
     else if (arg == "--uniform-edge")
       uniform_edge_ratio = std::stod(value());
     else if (arg == "--write")
@@ -191,19 +190,14 @@ int main(int argc, char** argv) {
         output::write_binary_stl(write_dir + "/" + part.name + "-" + kind + ".stl", m.vertices(),
                                  m.faces());
     };
-    if (uniform != "none") {
+    if (uniform) {
       const auto start = std::chrono::steady_clock::now();
       geometry::SurfaceMesh m;
       double ratio = 0.0;
       try {
-        if (uniform == "cgal") {
-          m = geometry::refine_to_edge_length(part.mesh, uniform_edge);
-          ratio = m.max_edge_length() / uniform_edge;
-        } else {
-          geometry::GradedMesh g = geometry::uniform_solver_mesh(part.mesh, uniform_edge);
-          m = std::move(g.mesh);
-          ratio = g.report.max_edge_ratio;
-        }
+        geometry::GradedMesh g = geometry::refine_uniformly(part.mesh, uniform_edge);
+        m = std::move(g.mesh);
+        ratio = g.report.max_edge_ratio;
         print_line(part, "uniform", m, seconds_since(start), ratio);
         write("uniform", m);
       } catch (const std::exception& e) {

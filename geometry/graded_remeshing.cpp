@@ -19,6 +19,13 @@ constexpr double kDegree = std::numbers::pi / 180.0;
 /// failure of the remesher (whose guards keep angles far above it), reported as such.
 constexpr double kDegenerateAngleDegrees = 1e-3;
 
+/// Area of an equilateral triangle of unit edge, √3/4: a face of size h covers this·h².
+constexpr double kEquilateralArea = 0.4330127018922193;
+
+/// Split bound of the remesher (Botsch–Kobbelt's 4/3): an input whose edges are all within
+/// it of h needs no split.
+constexpr double kFineEnoughEdgeRatio = 4.0 / 3.0;
+
 double min_angle_degrees(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                          const Eigen::Vector3d& c) {
   const Eigen::Vector3d p[3] = {a, b, c};
@@ -28,6 +35,54 @@ double min_angle_degrees(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
     smallest = std::min(smallest, std::atan2(u.cross(w).norm(), u.dot(w)) / kDegree);
   }
   return smallest;
+}
+
+/// Fills `r`'s description of `m` against `field`: counts, edge range, smallest angle, the
+/// edges' lengths against h at their midpoints, the area per reason of the size.
+void describe_mesh(const SurfaceMesh& m, const SurfaceCreases& creases, const MeshSizeField& field,
+                   GradedMeshReport& r) {
+  r.faces = m.num_faces();
+  r.vertices = m.num_vertices();
+  r.creases = static_cast<int>(creases.creases.size());
+  r.smoothed_edges = creases.smoothed_edges();
+  r.field = field.summary();
+  // Per face: smallest angle, the reason of the size at the centroid, the edges' lengths
+  // against h at their midpoints (each edge twice, once from each face).
+  const Eigen::Index nf = m.num_faces();
+  Eigen::VectorXd angle(nf), shortest(nf), longest(nf), low(nf), high(nf), perimeter(nf), faces(nf);
+  Eigen::VectorXi reason(nf);
+#pragma omp parallel for schedule(static)
+  for (Eigen::Index f = 0; f < nf; ++f) {
+    angle(f) = min_angle_degrees(m.corner(f, 0), m.corner(f, 1), m.corner(f, 2));
+    const auto [size, why] = field.size_and_reason(m.face_centroids().row(f).transpose());
+    reason(f) = static_cast<int>(why);
+    faces(f) = m.face_areas()(f) / (kEquilateralArea * size * size);
+    shortest(f) = low(f) = std::numeric_limits<double>::infinity();
+    longest(f) = high(f) = perimeter(f) = 0.0;
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector3d a = m.corner(f, k), b = m.corner(f, (k + 1) % 3);
+      const double length = (b - a).norm();
+      const double ratio = length / field.size(0.5 * (a + b));
+      perimeter(f) += length;
+      shortest(f) = std::min(shortest(f), length);
+      longest(f) = std::max(longest(f), length);
+      low(f) = std::min(low(f), ratio);
+      high(f) = std::max(high(f), ratio);
+    }
+  }
+  Eigen::Index worst = 0;
+  r.min_angle_degrees = nf > 0 ? angle.minCoeff(&worst) : 180.0;
+  if (nf > 0)
+    r.worst_angle_at = m.face_centroids().row(worst).transpose();
+  r.area_by_reason = {};
+  for (Eigen::Index f = 0; f < nf; ++f)
+    r.area_by_reason[static_cast<std::size_t>(reason(f))] += m.face_areas()(f);
+  r.min_edge = shortest.minCoeff();
+  r.max_edge = longest.maxCoeff();
+  r.min_edge_ratio = low.minCoeff();
+  r.max_edge_ratio = high.maxCoeff();
+  r.mean_edge = perimeter.sum() / (3.0 * static_cast<double>(std::max<Eigen::Index>(nf, 1)));
+  r.field_faces = faces.sum();
 }
 
 }  // namespace
@@ -53,6 +108,7 @@ GradedMesh remesh_to_size_field(const SurfaceMesh& mesh, const SurfaceCreases& c
   input.min_angle = options.min_angle_degrees * kDegree;
   input.max_normal_turn = options.max_normal_turn_degrees * kDegree;
   input.max_faces = options.max_faces;
+  input.max_edge_ratio = options.max_edge_ratio;
   input.progress = [&progress](double fraction) {
     throw_if_cancelled();
     report_progress(progress, "remeshing", fraction);
@@ -61,55 +117,19 @@ GradedMesh remesh_to_size_field(const SurfaceMesh& mesh, const SurfaceCreases& c
 
   GradedMesh result{SurfaceMesh(std::move(out.vertices), std::move(out.faces)), {}};
   GradedMeshReport& r = result.report;
-  const SurfaceMesh& m = result.mesh;
-  r.faces = m.num_faces();
-  r.vertices = m.num_vertices();
-  r.creases = static_cast<int>(creases.creases.size());
-  r.smoothed_edges = creases.smoothed_edges();
   r.splits = out.splits;
   r.collapses = out.collapses;
   r.flips = out.flips;
   r.moves = out.moves;
-  r.field = field.summary();
-  // Per face: smallest angle, the reason of the size at the centroid, the edges' lengths
-  // against h at their midpoints (each edge twice, once from each face).
-  const Eigen::Index nf = m.num_faces();
-  Eigen::VectorXd angle(nf), shortest(nf), longest(nf), low(nf), high(nf), perimeter(nf);
-  Eigen::VectorXi reason(nf);
-#pragma omp parallel for schedule(static)
-  for (Eigen::Index f = 0; f < nf; ++f) {
-    angle(f) = min_angle_degrees(m.corner(f, 0), m.corner(f, 1), m.corner(f, 2));
-    reason(f) = static_cast<int>(field.size_and_reason(m.face_centroids().row(f).transpose()).second);
-    shortest(f) = low(f) = std::numeric_limits<double>::infinity();
-    longest(f) = high(f) = perimeter(f) = 0.0;
-    for (int k = 0; k < 3; ++k) {
-      const Eigen::Vector3d a = m.corner(f, k), b = m.corner(f, (k + 1) % 3);
-      const double length = (b - a).norm();
-      const double ratio = length / field.size(0.5 * (a + b));
-      perimeter(f) += length;
-      shortest(f) = std::min(shortest(f), length);
-      longest(f) = std::max(longest(f), length);
-      low(f) = std::min(low(f), ratio);
-      high(f) = std::max(high(f), ratio);
-    }
-  }
-  Eigen::Index worst = 0;
-  r.min_angle_degrees = nf > 0 ? angle.minCoeff(&worst) : 180.0;
+  describe_mesh(result.mesh, creases, field, r);
   if (r.min_angle_degrees < kDegenerateAngleDegrees) {
     std::ostringstream msg;
     msg << "bemshape's remeshing made a degenerate triangle (smallest angle "
-        << r.min_angle_degrees << "°) at " << m.face_centroids().row(worst)
+        << r.min_angle_degrees << "°) at " << r.worst_angle_at.transpose()
         << "; this is a defect of the remesher, not of the input: please report it with the "
            "input file";
     throw InternalError(msg.str());
   }
-  for (Eigen::Index f = 0; f < nf; ++f)
-    r.area_by_reason[static_cast<std::size_t>(reason(f))] += m.face_areas()(f);
-  r.min_edge = shortest.minCoeff();
-  r.max_edge = longest.maxCoeff();
-  r.min_edge_ratio = low.minCoeff();
-  r.max_edge_ratio = high.maxCoeff();
-  r.mean_edge = perimeter.sum() / (3.0 * static_cast<double>(std::max<Eigen::Index>(nf, 1)));
   report_progress(progress, "remeshing", 1.0);
   return result;
 }
@@ -134,27 +154,21 @@ GradedMesh graded_solver_mesh(const SurfaceMesh& mesh, const GradedMeshParameter
   field_parameters.crease_spacing_ratio = p.crease_spacing_ratio;
   field_parameters.sample_spacing = kThicknessSampleSpacing * p.h0;
   const MeshSizeField field(mesh, creases, field_parameters);
-  return remesh_to_size_field(mesh, creases, field, p.remeshing, progress);
-}
-
-GradedMesh uniform_solver_mesh(const SurfaceMesh& mesh, double edge, double crease_angle_degrees,
-                               const GradedRemeshingOptions& options,
-                               const ProgressCallback& progress) {
-  if (!(std::isfinite(edge) && edge > 0.0)) {
-    std::ostringstream msg;
-    msg << "target edge length " << edge << " must be a positive number";
-    throw InputError(msg.str());
+  if (p.keep_input_face_ratio > 0.0) {
+    // An input already as fine as the field asks, well shaped, and not much finer: remeshing
+    // would only move its triangles around.
+    GradedMesh kept{mesh, {}};
+    describe_mesh(mesh, creases, field, kept.report);
+    const GradedMeshReport& r = kept.report;
+    if (r.max_edge_ratio <= kFineEnoughEdgeRatio &&
+        r.min_angle_degrees >= p.remeshing.min_angle_degrees &&
+        static_cast<double>(r.faces) <= p.keep_input_face_ratio * r.field_faces) {
+      kept.report.kept_input = true;
+      report_progress(progress, "remeshing", 1.0);
+      return kept;
+    }
   }
-  CreaseOptions crease_options;
-  crease_options.crease_angle_degrees = crease_angle_degrees;
-  const SurfaceCreases creases = find_surface_creases(mesh, crease_options);
-  SizeFieldParameters field_parameters;
-  field_parameters.fine_edge = edge;
-  field_parameters.max_edge = edge;
-  field_parameters.curvature_ratio = 0.0;
-  field_parameters.refine_creases = false;
-  const MeshSizeField field(mesh, creases, field_parameters);
-  return remesh_to_size_field(mesh, creases, field, options, progress);
+  return remesh_to_size_field(mesh, creases, field, p.remeshing, progress);
 }
 
 }  // namespace bemshape::geometry

@@ -50,6 +50,10 @@ struct GradedRemeshingOptions {
   double max_normal_turn_degrees = 30.0;
   /// Refuse to grow beyond this many faces (ResourceError).
   double max_faces = 2.0e7;
+  /// If > 0, edges longer than this times h are split at the end, so that none is longer
+  /// (the uniform mode's promise of RemeshingOptions::max_edge_ratio); 0 leaves the edges
+  /// of the rescue (up to about 1.6·h, where a collapse made a bad triangle good).
+  double max_edge_ratio = 0.0;
 };
 
 struct GradedMeshReport {
@@ -60,6 +64,11 @@ struct GradedMeshReport {
   double min_edge_ratio = 0.0;      ///< min over edges of length / h(midpoint)
   /// Area of the output faces whose size h(centroid) is set by each reason [model units²].
   std::array<double, kSizeReasons> area_by_reason{};
+  /// Σ area_f / (√3/4·h(centroid_f)²): the faces the field asks for on this surface.
+  double field_faces = 0.0;
+  Eigen::Vector3d worst_angle_at = Eigen::Vector3d::Zero();  ///< centroid of the worst face
+  /// The input was kept as it is (GradedMeshParameters::keep_input_face_ratio).
+  bool kept_input = false;
   int creases = 0;         ///< crease edges of the input
   int smoothed_edges = 0;  ///< candidate creases smoothed (tessellated smooth surfaces)
   long splits = 0, collapses = 0, flips = 0, moves = 0;
@@ -80,6 +89,11 @@ GradedMesh remesh_to_size_field(const SurfaceMesh& mesh, const SurfaceCreases& c
                                 const GradedRemeshingOptions& options = {},
                                 const ProgressCallback& progress = {});
 
+/// An input finer than the field asks by less than this factor in face count is kept rather
+/// than coarsened: the solve saves less than the remeshing and the user's own triangles
+/// (a generated ball, a mesh from another solver) stay the solver's.
+inline constexpr double kKeepInputFaceRatio = 2.0;
+
 /// The parameters of the graded solver mesh of a part, in terms of the PDE's h0.
 struct GradedMeshParameters {
   double h0 = 0.0;         ///< characteristic length [model units]
@@ -97,19 +111,15 @@ struct GradedMeshParameters {
   double smooth_angle_degrees = 15.0;
   /// δ = this·h0: the chord tolerance of smoothed surfaces. TODO-measured.
   double chord_tolerance_ratio = 2e-3;
+  /// An input whose edges are all within 4/3 of the field's h, whose angles are all above
+  /// remeshing.min_angle_degrees and whose face count is at most this times the count the
+  /// field asks for is returned as it is (0: always remesh).
+  double keep_input_face_ratio = kKeepInputFaceRatio;
   GradedRemeshingOptions remeshing;
 };
 
 /// Creases, size field and remeshing of a part for the solver (issue #32).
 GradedMesh graded_solver_mesh(const SurfaceMesh& mesh, const GradedMeshParameters& parameters,
                               const ProgressCallback& progress = {});
-
-/// The uniform mesh of edge ≈ `edge` [model units] with every crease above
-/// crease_angle_degrees kept: the same remesher with h = edge, refined only where two creases
-/// come closer than `edge` (their spacing), so that no needle is needed to keep them.
-GradedMesh uniform_solver_mesh(const SurfaceMesh& mesh, double edge,
-                               double crease_angle_degrees = 1.0,
-                               const GradedRemeshingOptions& options = {},
-                               const ProgressCallback& progress = {});
 
 }  // namespace bemshape::geometry

@@ -16,12 +16,6 @@ namespace {
 using Vec3 = Eigen::Vector3d;
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
-/// Sizes are floored at this fraction of h_f. Creases closer than that to each other (a
-/// boolean's leftovers: the CSG parts have crease edges of 0.004 mm beside their 0.7 mm facets,
-/// and touching creases give a spacing of 0) are kept with what angles they allow instead of
-/// refining without end; the remesher reports the smallest angle it reached.
-constexpr double kMinSizeRatio = 1.0 / 16.0;
-
 /// Crease-spacing pieces are at most this fraction of the distance to the nearest other
 /// crease; that distance changes by at most the piece's half length within it (it is
 /// 1-Lipschitz), so the piece's size c_l·(l − L/2) is within 25 % of the exact one.
@@ -233,7 +227,7 @@ MeshSizeField::MeshSizeField(const SurfaceMesh& mesh, const SurfaceCreases& crea
   s.max_edge = p.max_edge;
   s.gradation = p.gradation;
   s.slope = p.gradation - 1.0;
-  const double floor = kMinSizeRatio * p.fine_edge;
+  const double floor = p.min_size > 0.0 ? p.min_size : kMinSizeRatio * p.fine_edge;
   const Eigen::MatrixX3d& V = mesh.vertices();
 
   std::vector<Source> sources;

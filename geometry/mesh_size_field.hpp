@@ -59,6 +59,13 @@ inline constexpr double kCurvatureEdgeRatio = 0.2;
 /// c_l: elements no longer than this times the distance between two close creases.
 inline constexpr double kCreaseSpacingEdgeRatio = 1.5;
 
+/// Sizes are floored at this fraction of h_f by default (SizeFieldParameters::min_size).
+/// Creases closer than that to each other (a boolean's leftovers: the CSG parts have crease edges of 0.004 mm beside their 0.7 mm facets,
+/// and touching creases give a spacing of 0) are kept with what angles they allow instead of
+/// refining without end; the remesher reports the smallest angle it reached.
+inline constexpr double kMinSizeRatio = 1.0 / 16.0;
+
+
 /// Spacing of the wall-thickness samples, as a fraction of h0.
 inline constexpr double kThicknessSampleSpacing = 0.5;
 
@@ -86,6 +93,8 @@ struct SizeFieldParameters {
   double wall_thickness_ratio = kWallThicknessEdgeRatio;      ///< c_t
   double curvature_ratio = kCurvatureEdgeRatio;               ///< c_ρ; ≤ 0: off
   double crease_spacing_ratio = kCreaseSpacingEdgeRatio;      ///< c_l
+  /// h_min [model units]: no source asks for less; 0 means kMinSizeRatio·h_f.
+  double min_size = 0.0;
   /// Spacing of the wall-thickness samples [model units] (> 0 when thin_wall > 0).
   double sample_spacing = 0.0;
   /// false: creases are sources of size h_max instead of h_f (a uniform field of h_max,

@@ -177,6 +177,15 @@ class Remesher {
       if (flip_edges(true) == 0)
         break;
     rescue();
+    if (in_.max_edge_ratio > 0.0) {
+      split_long_edges(false, in_.max_edge_ratio);
+      for (int pass = 0; pass < 2 * kFlipPasses; ++pass)
+        if (flip_edges(true) == 0)
+          break;
+      // A midpoint split of a good triangle's longest edge can halve one of its angles;
+      // rescue those with collapses that keep every edge within the bound.
+      rescue(std::min(kRescueLengthRatio, in_.max_edge_ratio));
+    }
     progress(1.0);
     return output();
   }
@@ -296,7 +305,7 @@ class Remesher {
 
   /// Splits every edge longer than kSplitRatio·h (only the crease edges if creases_only)
   /// until none is left.
-  void split_long_edges(bool creases_only = false) {
+  void split_long_edges(bool creases_only = false, double ratio_bound = kSplitRatio) {
     for (int pass = 0; pass < kMaxSplitPasses; ++pass) {
       std::vector<std::pair<double, EdgeIndex>> long_edges;
       for (EdgeIndex e : mesh_.edges()) {
@@ -305,7 +314,7 @@ class Remesher {
         const HalfedgeIndex h = mesh_.halfedge(e);
         const double ratio =
             length(h) / target(mesh_.source(h), mesh_.target(h));
-        if (ratio > kSplitRatio)
+        if (ratio > ratio_bound)
           long_edges.emplace_back(ratio, e);
       }
       if (long_edges.empty())
@@ -691,9 +700,9 @@ class Remesher {
   }
 
   /// Faces whose smallest angle is below the bound: collapse their shortest edge where that
-  /// makes the faces around better (allowing edges up to kRescueLengthRatio·h), move their
+  /// makes the faces around better (allowing edges up to length_ratio·h), move their
   /// corners to the best position, flip where a flip helps.
-  void rescue() {
+  void rescue(double length_ratio = kRescueLengthRatio) {
     for (int pass = 0; pass < kRescuePasses; ++pass) {
       std::vector<FaceIndex> bad;
       for (FaceIndex f : mesh_.faces())
@@ -712,8 +721,8 @@ class Remesher {
         for (const HalfedgeIndex h : {shortest, mesh_.opposite(shortest)})
           for (FaceIndex g : CGAL::faces_around_target(mesh_.opposite(h), mesh_))
             old_min = std::min(old_min, face_min_angle(g));
-        const double forward = collapse_quality(shortest, kRescueLengthRatio);
-        const double backward = collapse_quality(mesh_.opposite(shortest), kRescueLengthRatio);
+        const double forward = collapse_quality(shortest, length_ratio);
+        const double backward = collapse_quality(mesh_.opposite(shortest), length_ratio);
         if (std::max(forward, backward) > old_min) {
           collapse(forward >= backward ? shortest : mesh_.opposite(shortest));
           continue;

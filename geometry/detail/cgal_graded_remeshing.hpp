@@ -31,6 +31,9 @@ struct GradedRemeshInput {
   double max_normal_turn = 0.0;
   /// Refuse to grow beyond this many faces (ResourceError).
   double max_faces = 0.0;
+  /// If > 0: at the end, edges longer than this times h (at their ends) are split, so that
+  /// no edge is longer than that.
+  double max_edge_ratio = 0.0;
   /// Called with the fraction done after each pass; may throw to cancel.
   std::function<void(double)> progress;
 };
