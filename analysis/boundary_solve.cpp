@@ -9,6 +9,7 @@
 #include "bem/solve/dense_transmission_solver.hpp"
 #include "core/errors.hpp"
 #include "core/memory.hpp"
+#include "core/memory_watch.hpp"
 #include "core/number_text.hpp"
 
 namespace bemshape::analysis {
@@ -29,6 +30,9 @@ void validate(const SolveOptions& options) {
 BoundarySolve solve_boundary(const geometry::PreparedMesh& input, const SolveOptions& options,
                              StageTimes& times, const ProgressCallback& progress) {
   validate(options);
+  // The running account of the process's memory while it remeshes and solves: a run that
+  // outgrows its budget stops at the next poll point with a ResourceError.
+  const MemoryWatch watch(options.max_memory_bytes);
   const std::string& source = input.report.source;
   const auto parameters = bem::TransmissionParameters::from_shape(options.h0, options.a);
   BoundarySolve run;
@@ -38,6 +42,26 @@ BoundarySolve solve_boundary(const geometry::PreparedMesh& input, const SolveOpt
   } else {
     run.max_edge = parameters.default_max_edge();
     run.max_edge_rule = "default rule 3/kappa = 1.5*a*h0";
+  }
+  // Before remeshing: a solver mesh of about area/(0.43·edge²) faces (fewer than the
+  // remesher makes) whose fast path cannot fit even at its smallest (preconditioner and
+  // the shortest Krylov bases) is refused now rather than after minutes of remeshing.
+  const double predicted_faces = input.mesh.area() / (0.43 * run.max_edge * run.max_edge);
+  if (options.solver.method != SolverMethod::dense && predicted_faces > kAutoDenseFaces) {
+    std::string reason;
+    const std::uint64_t limit = resident_memory_limit_bytes(options.max_memory_bytes, &reason);
+    const std::uint64_t least =
+        process_memory().resident +
+        bem::hmatrix_solver_minimum_bytes(Eigen::Index(predicted_faces), bem::HMatrixSolverOptions{});
+    if (limit > 0 && least > limit)
+      throw ResourceError(
+          source + ": the hierarchical-matrix BEM system of about " +
+          std::to_string(std::llround(predicted_faces)) + " solver faces (edge " +
+          number_text(run.max_edge, 3) + ", " + run.max_edge_rule + ") needs more than " +
+          number_text(double(least) / 1e9, 3) + " GB but only " +
+          number_text(double(limit) / 1e9, 3) + " GB may be used" + reason +
+          "; use a coarser mesh (larger --max-edge)" +
+          (reason == " (--max-memory)" ? " or a larger --max-memory" : ""));
   }
   // Each stage is announced when it starts: the libraries report their first progress only
   // after some work, and a display ends the previous stage when a new name arrives.
@@ -66,14 +90,15 @@ BoundarySolve solve_boundary(const geometry::PreparedMesh& input, const SolveOpt
       run.solution =
           bem::solve_transmission_hmatrix(run.solver_mesh, parameters, hmatrix, progress);
     } catch (const ResourceError& refused) {
-      // The solver's estimate was over the budget before assembly: name the input too.
+      // The solver's estimate was over the budget before assembly, or the memory watch
+      // stopped the assembly: name the input too.
       throw ResourceError(source + ": " + refused.what());
     } catch (const std::bad_alloc&) {
-      // The estimate checked before assembly was low for this part (ranks, near field).
+      // An allocation failed before the watch saw the run outgrow its budget.
       throw ResourceError(source + ": the hierarchical-matrix BEM solver ran out of memory for " +
                           std::to_string(faces) + " solver faces (edge " +
                           number_text(run.max_edge, 3) +
-                          "); use a coarser mesh (larger --max-edge)");
+                          "); use a coarser mesh (larger --max-edge) or a larger --max-memory");
     }
   } else {
     // The refusal names a --max-edge that fits; flat walls stay accurate up to κ·h = 5.
@@ -88,7 +113,9 @@ BoundarySolve solve_boundary(const geometry::PreparedMesh& input, const SolveOpt
     dense.max_memory_bytes = options.max_memory_bytes;
     try {
       run.solution = bem::solve_transmission_dense(run.solver_mesh, parameters, dense, progress);
-    } catch (const ResourceError&) {
+    } catch (const ResourceError& stopped) {
+      if (detail::memory_overrun.load())  // the memory watch stopped the assembly
+        throw ResourceError(source + ": " + stopped.what());
       // The machine's free memory dropped between our check and the allocation.
       refuse_dense_system(refusal, memory_budget_bytes(options.max_memory_bytes));
     }

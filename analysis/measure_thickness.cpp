@@ -3,7 +3,9 @@
 #include <cmath>
 #include <utility>
 
+#include "core/cancellation.hpp"
 #include "core/errors.hpp"
+#include "core/memory_watch.hpp"
 #include "core/number_text.hpp"
 #include "features/feature_parameters.hpp"
 #include "features/thickness.hpp"
@@ -13,6 +15,8 @@ namespace {
 
 ThicknessResult measure(ThicknessResult result, const ThicknessOptions& options,
                         const ProgressCallback& progress) {
+  // The memory watch covers the features and the mapping back too (core/memory_watch.hpp).
+  const MemoryWatch watch(options.solve.max_memory_bytes);
   const double h0 = options.solve.h0;
   result.boundary = solve_boundary(result.input, options.solve, result.times, progress);
   const geometry::SurfaceMesh& solver_mesh = result.boundary.solver_mesh;
@@ -27,6 +31,7 @@ ThicknessResult measure(ThicknessResult result, const ThicknessOptions& options,
     report_progress(progress, "surface features", 0.0);
     return surface_features(solver_mesh, result.boundary.solution, parameters);
   });
+  throw_if_cancelled();  // the features' own loops have no poll points
   result.thickness = result.solver_features.face.col(result.column);
   result.statistics =
       thickness_statistics(solver_mesh, result.thickness, features::kMaxThicknessFactor * h0);
@@ -38,6 +43,7 @@ ThicknessResult measure(ThicknessResult result, const ThicknessOptions& options,
       report_progress(progress, "map to input mesh", 0.0);
       return transfer_features(solver_mesh, result.solver_features, result.input.mesh);
     });
+  throw_if_cancelled();
   return result;
 }
 

@@ -220,7 +220,9 @@ void print_report(std::ostream& out, const ThicknessOptions& options, double h0,
   for (const auto& [stage, seconds] : times.stages())
     out << ' ' << stage << ' ' << seconds_text(seconds) << " s,";
   out << " total " << seconds_text(times.elapsed()) << " s\n"
-      << "  memory       peak " << number_text(peak_mb, 6) << " MB\n";
+      << "  memory       peak " << number_text(peak_mb, 6) << " MB, estimate "
+      << number_text(double(result.boundary.solution.report.memory_estimate_bytes) / 1e6, 6)
+      << " MB (the guard's bound, checked before the solve)\n";
   if (!options.output.empty())
     out << "  output       " << options.output << '\n';
   if (!options.solver_output.empty())

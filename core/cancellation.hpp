@@ -1,6 +1,8 @@
 #pragma once
-// Cooperative cancellation of a run: a deadline (the --timeout option) and a flag that a
-// signal handler may set (SIGINT, SIGTERM). Long loops below apps/ poll
+// Cooperative cancellation of a run: a deadline (the --timeout option), a flag that a
+// signal handler may set (SIGINT, SIGTERM) and a flag that the memory watch sets when the
+// run outgrows its memory (core/memory_watch.hpp; throw_if_cancelled() then throws
+// ResourceError). Long loops below apps/ poll
 // cancellation_requested() (cheap: one atomic load, plus one clock read when a deadline is
 // set) and stop; code outside OpenMP parallel regions calls throw_if_cancelled(), which
 // throws CancelledError. Inside a parallel region an exception cannot leave the region, so
@@ -23,6 +25,7 @@
 #include <chrono>
 #include <cstdint>
 #include <cstdio>
+#include <mutex>
 #include <string>
 
 #include "core/errors.hpp"
@@ -37,6 +40,17 @@ inline std::atomic<int> cancellation_signal{0};
 inline std::atomic<std::int64_t> deadline_ticks{0};
 /// The timeout the deadline came from [s], for the message.
 inline std::atomic<double> timeout_seconds{0.0};
+/// Set once by the memory watch (core/memory_watch.hpp) when the run outgrew its memory;
+/// the message (what, how much, what to do) is set before the flag, under the mutex.
+inline std::atomic<bool> memory_overrun{false};
+inline std::mutex& memory_overrun_mutex() {
+  static std::mutex m;
+  return m;
+}
+inline std::string& memory_overrun_message() {
+  static std::string message;
+  return message;
+}
 static_assert(std::atomic<int>::is_always_lock_free && std::atomic<std::int64_t>::is_always_lock_free,
               "the cancellation flag must be usable from a signal handler");
 }  // namespace detail
@@ -58,19 +72,27 @@ inline void set_deadline(double seconds) {
 inline void clear_cancellation() noexcept {
   detail::cancellation_signal.store(0);
   detail::deadline_ticks.store(0);
+  detail::memory_overrun.store(false);
 }
 
-/// True once a signal asked the run to stop or the deadline has passed. Thread-safe.
+/// True once a signal asked the run to stop, the deadline has passed or the memory watch
+/// saw the run outgrow its memory. Thread-safe.
 inline bool cancellation_requested() noexcept {
   if (detail::cancellation_signal.load(std::memory_order_relaxed) != 0) return true;
+  if (detail::memory_overrun.load(std::memory_order_relaxed)) return true;
   const std::int64_t deadline = detail::deadline_ticks.load(std::memory_order_relaxed);
   return deadline != 0 && std::chrono::steady_clock::now().time_since_epoch().count() >= deadline;
 }
 
-/// Throws CancelledError if cancellation_requested(). Not inside OpenMP parallel regions.
+/// Throws CancelledError if cancellation_requested() for a signal or the deadline,
+/// ResourceError for the memory watch. Not inside OpenMP parallel regions.
 inline void throw_if_cancelled() {
   if (!cancellation_requested()) return;
   const int signal = detail::cancellation_signal.load();
+  if (signal == 0 && detail::memory_overrun.load()) {
+    std::lock_guard<std::mutex> lock(detail::memory_overrun_mutex());
+    throw ResourceError(detail::memory_overrun_message());
+  }
   if (signal != 0)
     throw CancelledError("interrupted by signal " + std::to_string(signal) +
                          "; stopped cleanly, no output file was written or changed",

@@ -2,8 +2,9 @@
 // Memory accounting for large allocations: how much the machine can give, how much this
 // process has used at its peak, and a guard that refuses an allocation that would not fit
 // with a message naming what to do instead (instead of an out-of-memory kill). The budget
-// is the smallest of: the usable part of the machine's available memory, the address space
-// left under `ulimit -v`, and --max-memory.
+// is the smallest of: the usable part of the machine's available memory, of what the
+// process's cgroup may still take, of the address space left under `ulimit -v`, and
+// --max-memory. core/memory_watch.hpp holds the running account of a whole run.
 
 #include <sys/resource.h>
 
@@ -13,6 +14,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <utility>
 
 #include "core/errors.hpp"
 
@@ -65,6 +67,28 @@ inline std::uint64_t address_space_left_bytes() {
   return cap > used ? cap - used : 1;
 }
 
+/// Bytes the process's cgroup may still take (memory.max − memory.current, cgroup v2, or
+/// memory.limit_in_bytes − memory.usage_in_bytes, v1); 0 if unlimited or unknown.
+inline std::uint64_t cgroup_memory_left_bytes() {
+  const auto read = [](const char* path) -> std::uint64_t {
+    std::ifstream in(path);
+    std::string text;
+    if (!(in >> text) || text == "max") return 0;
+    const unsigned long long v = std::strtoull(text.c_str(), nullptr, 10);
+    return v >= (1ull << 60) ? 0 : v;  // v1 writes "unlimited" as about 2^63
+  };
+  for (const auto& [limit_path, usage_path] :
+       {std::pair{"/sys/fs/cgroup/memory.max", "/sys/fs/cgroup/memory.current"},
+        std::pair{"/sys/fs/cgroup/memory/memory.limit_in_bytes",
+                  "/sys/fs/cgroup/memory/memory.usage_in_bytes"}}) {
+    const std::uint64_t limit = read(limit_path);
+    if (limit == 0) continue;
+    const std::uint64_t used = read(usage_path);
+    return limit > used ? limit - used : 1;
+  }
+  return 0;
+}
+
 /// Fraction of the available memory one allocation may claim: the rest is left for the
 /// operating system, the other arrays of the run and the file cache.
 inline constexpr double kUsableMemoryFraction = 0.8;
@@ -79,6 +103,8 @@ inline std::uint64_t memory_budget_bytes(std::uint64_t limit_bytes = 0) {
   };
   const std::uint64_t available = available_memory_bytes();
   if (available > 0) cap(static_cast<std::uint64_t>(kUsableMemoryFraction * double(available)));
+  const std::uint64_t cgroup = cgroup_memory_left_bytes();
+  if (cgroup > 0) cap(static_cast<std::uint64_t>(kUsableMemoryFraction * double(cgroup)));
   const std::uint64_t address_space = address_space_left_bytes();
   if (address_space > 0)
     cap(static_cast<std::uint64_t>(kUsableMemoryFraction * double(address_space)));
@@ -86,7 +112,7 @@ inline std::uint64_t memory_budget_bytes(std::uint64_t limit_bytes = 0) {
 }
 
 /// What sets memory_budget_bytes(limit_bytes), for messages: " (--max-memory)",
-/// " (ulimit -v)" or "" (the machine's available memory).
+/// " (ulimit -v)", " (cgroup)" or "" (the machine's available memory).
 inline std::string memory_budget_reason(std::uint64_t limit_bytes = 0) {
   const std::uint64_t budget = memory_budget_bytes(limit_bytes);
   if (limit_bytes > 0 && budget == limit_bytes) return " (--max-memory)";
@@ -94,6 +120,9 @@ inline std::string memory_budget_reason(std::uint64_t limit_bytes = 0) {
   if (address_space > 0 &&
       budget == static_cast<std::uint64_t>(kUsableMemoryFraction * double(address_space)))
     return " (ulimit -v)";
+  const std::uint64_t cgroup = cgroup_memory_left_bytes();
+  if (cgroup > 0 && budget == static_cast<std::uint64_t>(kUsableMemoryFraction * double(cgroup)))
+    return " (cgroup)";
   return "";
 }
 

@@ -62,6 +62,8 @@ nlohmann::json thickness_report_json(const analysis::ThicknessOptions& options,
   report["solver"] = solver_json(solve);
   report["timing"] = timing_json(times);
   report["memory"] = memory_json(run);
+  // The memory guard's bound on the peak, checked before the solve (docs/reliability.md).
+  report["memory"]["estimate_mb"] = double(solve.solution.report.memory_estimate_bytes) / 1e6;
   return report;
 }
 

@@ -38,6 +38,10 @@ struct SolveReport {
   /// Where the solve's wall time went (name, seconds); empty for the dense path.
   std::vector<std::pair<std::string, double>> solve_stages;
   std::uint64_t operator_bytes = 0;  ///< memory held by the assembled operators [bytes]
+  /// The memory guard's bound on the process's resident size during the solve [bytes]
+  /// (what it held before, the operators, the solver's work arrays), checked against the
+  /// budget before anything was assembled.
+  std::uint64_t memory_estimate_bytes = 0;
   /// operator_bytes by part, in the order of assembly_stages (name, bytes); empty for the
   /// dense path.
   std::vector<std::pair<std::string, std::uint64_t>> operator_parts;

@@ -2,6 +2,10 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <new>
+
+#include "core/cancellation.hpp"
+#include "core/memory_watch.hpp"
 
 namespace bemshape::bem {
 
@@ -25,6 +29,8 @@ ClusterBlockPreconditioner::ClusterBlockPreconditioner(const ClusterTree& tree,
         {ranges_.begin() + std::ptrdiff_t(first), ranges_.begin() + std::ptrdiff_t(last)});
 #pragma omp parallel for schedule(dynamic, 1)
     for (std::size_t t = first; t < last; ++t) {
+      if (cancellation_requested()) continue;  // stopped, or out of memory (below)
+      try {
       const auto [begin, end] = ranges_[t];
       const Eigen::Index s = end - begin;
       Eigen::MatrixXd local(2 * s, 2 * s);
@@ -42,7 +48,11 @@ ClusterBlockPreconditioner::ClusterBlockPreconditioner(const ClusterTree& tree,
       }
       interior[t - first].resize(0, 0);
       factors_[t] = linalg::FixedPointLu(local.cast<float>());
+      } catch (const std::bad_alloc&) {
+        note_failed_allocation();  // an exception cannot leave the loop: thrown below
+      }
     }
+    throw_if_cancelled();
   }
 }
 

@@ -1,6 +1,10 @@
 #include "bem/solve/cluster_coarse_space.hpp"
 
 #include <map>
+#include <new>
+
+#include "core/cancellation.hpp"
+#include "core/memory_watch.hpp"
 
 namespace bemshape::bem {
 
@@ -28,14 +32,20 @@ ClusterCoarseSpace::ClusterCoarseSpace(const ClusterTree& tree, const Hierarchic
     std::vector<std::vector<std::pair<std::int32_t, double>>> rows(static_cast<size_t>(n_));
 #pragma omp parallel for schedule(static)
     for (Eigen::Index i = 0; i < n_; ++i) {
-      std::map<std::int32_t, double> sums;
-      yukawa.for_each_in_row(i, [&](Eigen::Index j, double minus_k, double v) {
-        const std::int32_t c = std::int32_t(cluster_of_[size_t(j)]);
-        sums[c] += minus_k;
-        sums[std::int32_t(m) + c] += v;
-      });
-      rows[size_t(i)].assign(sums.begin(), sums.end());
+      if (cancellation_requested()) continue;  // stopped, or out of memory (below)
+      try {
+        std::map<std::int32_t, double> sums;
+        yukawa.for_each_in_row(i, [&](Eigen::Index j, double minus_k, double v) {
+          const std::int32_t c = std::int32_t(cluster_of_[size_t(j)]);
+          sums[c] += minus_k;
+          sums[std::int32_t(m) + c] += v;
+        });
+        rows[size_t(i)].assign(sums.begin(), sums.end());
+      } catch (const std::bad_alloc&) {
+        note_failed_allocation();  // an exception cannot leave the loop: thrown below
+      }
     }
+    throw_if_cancelled();
     yukawa_grouped_.resize(n_, 2 * m);
     Eigen::VectorXi sizes(n_);
     for (Eigen::Index i = 0; i < n_; ++i) sizes(i) = int(rows[size_t(i)].size());

@@ -14,6 +14,7 @@
 #include "core/cancellation.hpp"
 #include "core/errors.hpp"
 #include "core/memory.hpp"
+#include "core/memory_watch.hpp"
 
 namespace bemshape::bem {
 namespace {
@@ -28,6 +29,14 @@ double seconds_since(Clock::time_point start) {
 /// backward stable, so a healthy solve lands near machine precision times the growth
 /// factor; 1e-6 only trips on a (numerically) singular system.
 constexpr double kMaxDirectResidual = 1e-6;
+
+/// Memory of the dense path beside the system per face [bytes]: the panels, both
+/// operators' tables of touching pairs and the rows' thread-local work arrays, and the
+/// margin over the system's own bytes (kDenseSystemMargin) for the heap's rounding of the
+/// two matrices. Measured on a 3920-face ball (docs/reliability.md, "Estimate and peak"):
+/// peak 1012 MB, of which 983 MB are the system and its copy.
+constexpr double kDenseWorkBytesPerFace = 8000.0;
+constexpr double kDenseSystemMargin = 1.05;
 
 }  // namespace
 
@@ -50,6 +59,15 @@ BoundarySolution solve_transmission_dense(const geometry::SurfaceMesh& mesh,
     require_memory(dense_solver_memory_bytes(n), "the dense BEM system", instead.str(),
                    options.max_memory_bytes);
   }
+  // The bound on the process's peak: what it holds, the system, the tables of touching
+  // pairs and the rows' work arrays (kDenseWorkBytesPerFace).
+  const std::uint64_t estimate =
+      process_memory().resident +
+      std::uint64_t(kDenseSystemMargin * double(dense_solver_memory_bytes(n)) +
+                    kDenseWorkBytesPerFace * double(n));
+  set_memory_context("the dense BEM system of " + std::to_string(n) + " faces",
+                     "use a coarser mesh (larger --max-edge), the hierarchical-matrix solver "
+                     "(--solver hmatrix) or a larger --max-memory");
 
   const auto start = Clock::now();
   const std::vector<Panel> panels = make_panels(mesh);
@@ -101,6 +119,7 @@ BoundarySolution solve_transmission_dense(const geometry::SurfaceMesh& mesh,
   BoundarySolution solution;
   solution.parameters = parameters;
   solution.report.method = "dense-lu";  // P0 Galerkin, partial-pivot LU
+  solution.report.memory_estimate_bytes = estimate;
   solution.report.unknowns = 2 * n;
   solution.report.assembly_seconds = seconds_since(start);
 

@@ -19,6 +19,10 @@
 #include "core/cancellation.hpp"
 #include "core/errors.hpp"
 #include "core/memory.hpp"
+#include "core/memory_watch.hpp"
+#include "core/number_text.hpp"
+
+#include <omp.h>
 
 namespace bemshape::bem {
 namespace {
@@ -45,6 +49,22 @@ constexpr double kTypicalNestedRank = 150.0;
 /// The couplings' bytes per face and level above nested_min_cluster (0.6 kB per face over
 /// the 8.6–10.6 levels of those spheres; per level, so that deeper trees are not undercounted):
 constexpr double kNestedCouplingBytes = 70.0;
+/// Factor entries per entry of a block's edge o·|τ| + g·|σ| in the bound of the low-rank
+/// blocks (HMatrixPartitionCounts::admissible_edges): the recompressed rank of the largest
+/// blocks. Measured (docs/reliability.md, "Estimate and peak"): ...
+constexpr double kBoundRank = 24.0;
+/// Rank of a block's double-precision cross approximation while it is built (ACA's
+/// overshoot is 16–21 % above the recompressed rank; the largest blocks' ranks stay below).
+constexpr double kAcaWorkRank = 48.0;
+/// Work arrays of one product with the three right-hand sides [bytes per face]: the
+/// densities (n × 6), the row-major copy of x (2n × 3), the exterior rows (n × 3) and the
+/// result (2n × 3), 8 bytes each, and the preconditioner's work on as many.
+constexpr double kProductWorkBytes = 2.0 * 8.0 * (6.0 + 6.0 + 3.0 + 6.0);
+/// The factor between the parts counted above and the process's peak growth measured over
+/// the benchmark set (docs/reliability.md, "Estimate and peak"): the heap's retained and
+/// fragmented pages, the nested far field's transient bases, the copies made while a part is
+/// converted to its narrow format.
+constexpr double kPeakSafetyFactor = 1.3;
 /// The shortest restart length the memory guard may choose, below a user's longer one: above
 /// the 13–22 iterations the fast path takes up to 10⁶ faces (docs/benchmarks.md).
 constexpr int kMinRestart = 30;
@@ -94,10 +114,28 @@ RowMajorRows sparse_rows_product(const YukawaNearField<Scalar>& y, const RowMajo
 
 }  // namespace
 
+HMatrixPartitionCounts count_partition(const ClusterTree& tree, const BlockPartition& partition) {
+  // The Laplace row's generator: one output per row panel, two densities (φ, q) per column.
+  constexpr double o = 1.0, g = 2.0;
+  HMatrixPartitionCounts counts;
+  for (const BlockIndex& b : partition.dense)
+    counts.near_entries +=
+        o * double(tree.cluster(b.rows).size()) * g * double(tree.cluster(b.cols).size());
+  for (const BlockIndex& b : partition.admissible) {
+    const double edge =
+        o * double(tree.cluster(b.rows).size()) + g * double(tree.cluster(b.cols).size());
+    counts.admissible_edges += edge;
+    counts.largest_admissible_edge = std::max(counts.largest_admissible_edge, edge);
+  }
+  return counts;
+}
+
 std::uint64_t hmatrix_solver_memory_estimate(Eigen::Index faces, std::uint64_t exterior_pairs,
                                              std::uint64_t exterior_runs,
                                              const HMatrixSolverOptions& options,
-                                             HMatrixSolverOptions::FarField far_field) {
+                                             HMatrixSolverOptions::FarField far_field,
+                                             const HMatrixPartitionCounts* counts,
+                                             std::uint64_t held_bytes) {
   if (far_field == HMatrixSolverOptions::FarField::automatic)
     far_field = options.far_field == HMatrixSolverOptions::FarField::nested
                     ? HMatrixSolverOptions::FarField::nested
@@ -108,13 +146,17 @@ std::uint64_t hmatrix_solver_memory_estimate(Eigen::Index faces, std::uint64_t e
   // ≈ log2(N/leaf) levels × a few blocks × 3·rank per row. Near-field entries take 4 or 8
   // bytes; factor entries 8 in double precision, 2.5 on average in single precision with
   // the fixed-point columns (measured: 2.27 on a 100820-face sphere, 2.49 on a remeshed
-  // 121480-face box; AdaptivePrecisionFactors).
+  // 121480-face box; AdaptivePrecisionFactors). With the partition's counts the near field
+  // is exact and the factors are counted per block edge.
   const double leaf = double(options.leaf_size);
   const double levels = std::max(1.0, std::log2(std::max(n / leaf, 1.0)));
   const double near_leaves = 30.0 * std::pow(std::max(options.eta, 1.0), -0.45);
   const double entry_bytes = options.single_precision ? 4.0 : 8.0;
   const double factor_bytes = options.single_precision ? 2.5 : 8.0;
-  double far = factor_bytes * levels * 6.0 * 3.0 * kTypicalRank;
+  const double near = counts ? entry_bytes * counts->near_entries
+                             : n * entry_bytes * 2.0 * near_leaves * leaf;
+  double far = counts ? factor_bytes * kBoundRank * counts->admissible_edges
+                      : n * factor_bytes * levels * 6.0 * 3.0 * kTypicalRank;
   if (far_field == HMatrixSolverOptions::FarField::nested) {
     // The blocks below nested_min_cluster as factors, on the levels from the leaves to it;
     // the H² part: bases of rank ≈ kTypicalNestedRank on both sides (1 + 2 rows per panel, 4
@@ -122,12 +164,11 @@ std::uint64_t hmatrix_solver_memory_estimate(Eigen::Index faces, std::uint64_t e
     // kNestedCouplingBytes).
     const double small_levels =
         std::clamp(std::log2(double(options.nested_min_cluster) / leaf), 0.0, levels);
-    far = kSmallBlockBytes * small_levels +
-          (levels > small_levels
-               ? 3.0 * 4.0 * kTypicalNestedRank + kNestedCouplingBytes * (levels - small_levels)
-               : 0.0);
+    far = n * (kSmallBlockBytes * small_levels +
+               (levels > small_levels ? 3.0 * 4.0 * kTypicalNestedRank +
+                                            kNestedCouplingBytes * (levels - small_levels)
+                                      : 0.0));
   }
-  const double laplace = n * (entry_bytes * 2.0 * near_leaves * leaf + far);
   // Yukawa: written in place, its values in the factors' precision.
   const double yukawa =
       double(options.single_precision
@@ -142,9 +183,25 @@ std::uint64_t hmatrix_solver_memory_estimate(Eigen::Index faces, std::uint64_t e
                                          n / (0.5 * double(options.coarse_cluster)))
                               : 0.0;
   const double coarse = 16.0 * 4.0 * clusters * clusters;
-  // Three Krylov bases (one per direction, solved in lockstep) and their work vectors.
-  const double krylov = 3.0 * 8.0 * 2.0 * n * (options.restart + 6.0);
-  return static_cast<std::uint64_t>(laplace + yukawa + preconditioner + coarse + krylov);
+  // Three Krylov bases (one per direction, solved in lockstep) and their work vectors, and
+  // the product's copies of the three right-hand sides (densities, row-major copy, exterior
+  // rows, result: kProductWorkBytes per face).
+  const double krylov = 3.0 * 8.0 * 2.0 * n * (options.restart + 6.0) + kProductWorkBytes * n;
+  // Each thread's cross approximation holds its block's factors in double precision at up
+  // to kAcaWorkRank before they are recompressed and narrowed.
+  const double threads = double(std::max(1, omp_get_max_threads()));
+  const double aca_work =
+      counts ? threads * 2.0 * 8.0 * kAcaWorkRank * counts->largest_admissible_edge : 0.0;
+  return held_bytes + static_cast<std::uint64_t>(
+                          kPeakSafetyFactor *
+                          (near + far + yukawa + preconditioner + coarse + krylov + aca_work));
+}
+
+std::uint64_t hmatrix_solver_minimum_bytes(Eigen::Index faces,
+                                           const HMatrixSolverOptions& options) {
+  const double n = double(faces);
+  return ClusterBlockPreconditioner::bytes_for(faces, options.preconditioner_block) +
+         static_cast<std::uint64_t>(3.0 * 8.0 * 2.0 * n * (kMinRestart + 6.0));
 }
 
 BoundarySolution solve_transmission_hmatrix(const geometry::SurfaceMesh& mesh,
@@ -170,11 +227,19 @@ BoundarySolution solve_transmission_hmatrix(const geometry::SurfaceMesh& mesh,
       yukawa_near_field_rows(panels, tree, parameters.kappa, negligible);
   const double count_seconds = seconds_since(count_start);
   using FarField = HMatrixSolverOptions::FarField;
+  BlockPartition partition = partition_blocks(tree, options.eta);
+  const HMatrixPartitionCounts counts = count_partition(tree, partition);
+  // What the process holds already (meshes, panels, tree, partition) is part of the peak;
+  // the budget is the resident size the run may reach (core/memory_watch.hpp).
+  const std::uint64_t held = options.held_bytes.value_or(process_memory().resident);
   const auto estimate = [&](const HMatrixSolverOptions& o, FarField far_field) {
     return hmatrix_solver_memory_estimate(n, std::uint64_t(exterior_rows.pairs.sum()),
-                                          std::uint64_t(exterior_rows.runs.sum()), o, far_field);
+                                          std::uint64_t(exterior_rows.runs.sum()), o, far_field,
+                                          &counts, held);
   };
-  const std::uint64_t budget = memory_budget_bytes(options.max_memory_bytes);
+  std::string budget_reason;
+  const std::uint64_t budget =
+      resident_memory_limit_bytes(options.max_memory_bytes, &budget_reason);
   FarField far_field = options.far_field;
   if (far_field == FarField::automatic) {
     const std::uint64_t factored = estimate(options, FarField::hmatrix);
@@ -198,16 +263,31 @@ BoundarySolution solve_transmission_hmatrix(const geometry::SurfaceMesh& mesh,
   HMatrixSolverOptions fitted = options;
   while (budget > 0 && fitted.restart > kMinRestart && estimate(fitted, far_field) > budget)
     fitted.restart = std::max(kMinRestart, fitted.restart - 10);
-  require_memory(estimate(fitted, far_field),
-                 "the hierarchical-matrix BEM system of " + std::to_string(n) + " faces",
-                 "use a coarser mesh (larger --max-edge)", options.max_memory_bytes);
+  const std::uint64_t needed = estimate(fitted, far_field);
+  const std::string what = "the hierarchical-matrix BEM system of " + std::to_string(n) + " faces";
+  // The other form of the far field, where it would need less, is a way out too.
+  const bool nested_smaller =
+      far_field == FarField::hmatrix && options.single_precision &&
+      estimate(fitted, FarField::nested) < needed;
+  // A larger limit helps where it is the user's: --max-memory or ulimit -v.
+  const std::string larger_limit = budget_reason == " (ulimit -v)"      ? " or a larger ulimit -v"
+                                   : budget_reason == " (--max-memory)" ? " or a larger --max-memory"
+                                                                        : "";
+  const std::string instead = std::string("use a coarser mesh (larger --max-edge)") +
+                              (nested_smaller ? ", --far-field nested" : "") + larger_limit;
+  if (budget > 0 && needed > budget)
+    throw ResourceError(what + " needs " + number_text(double(needed) / 1e9, 3) +
+                        " GB (estimated peak of the process) but only " +
+                        number_text(double(budget) / 1e9, 3) + " GB may be used" +
+                        budget_reason + "; " + instead);
+  set_memory_context(what + " (estimated peak " + number_text(double(needed) / 1e9, 3) + " GB)",
+                     instead);
 
   report_progress(progress, "assemble", 0.0);
   const auto interior_start = Clock::now();
   // The blocks of the H² part: between clusters of at least nested_min_cluster panels, and
   // not inside one preconditioner block (the preconditioner reads its blocks from the
   // H-matrix, HierarchicalMatrix::diagonal_blocks).
-  BlockPartition partition = partition_blocks(tree, options.eta);
   std::vector<BlockIndex> nested_blocks;
   if (far_field == FarField::nested) {
     std::vector<int> range(tree.clusters().size(), -1);
@@ -255,6 +335,7 @@ BoundarySolution solve_transmission_hmatrix(const geometry::SurfaceMesh& mesh,
         progress);
   }();
   const double interior_seconds = seconds_since(interior_start);
+  throw_if_cancelled();  // the memory watch may have stopped the run (core/memory_watch.hpp)
   report_progress(progress, "assemble exterior", 0.0);
   const auto exterior_start = Clock::now();
   // In single precision with the factors (12 bytes per pair instead of 20); one of the two
@@ -273,6 +354,7 @@ BoundarySolution solve_transmission_hmatrix(const geometry::SurfaceMesh& mesh,
   const double exterior_seconds = count_seconds + seconds_since(exterior_start);
   Eigen::VectorXd half_mass(n);
   for (Eigen::Index p = 0; p < n; ++p) half_mass(p) = 0.5 * mesh.face_areas()(perm[size_t(p)]);
+  throw_if_cancelled();
   report_progress(progress, "preconditioner", 0.0);
   const ClusterBlockPreconditioner preconditioner = with_exterior([&](const auto& yukawa) {
     return ClusterBlockPreconditioner(tree, laplace, yukawa, half_mass, options.preconditioner_block);
@@ -284,8 +366,10 @@ BoundarySolution solve_transmission_hmatrix(const geometry::SurfaceMesh& mesh,
                      HierarchicalMatrix::GroupedColumns::Storage::fixed8, far ? &*far : nullptr);
     });
 
+  throw_if_cancelled();
   BoundarySolution solution;
   solution.parameters = parameters;
+  solution.report.memory_estimate_bytes = needed;
   solution.report.method = far ? "hmatrix-h2-gmres" : "hmatrix-gmres";
   solution.report.unknowns = 2 * n;
   solution.report.restart = fitted.restart;

@@ -18,6 +18,7 @@
 // iteration counts.
 
 #include <cstdint>
+#include <optional>
 
 #include "bem/solve/boundary_solution.hpp"
 #include "bem/hmatrix/block_partition.hpp"
@@ -82,20 +83,45 @@ struct HMatrixSolverOptions {
   /// (measured on a 100820-face sphere, docs/benchmarks.md: 128, 256 and 512 panels give
   /// 704, 686 and 713 MB of far field against the H-matrix's 1001 MB).
   Eigen::Index nested_min_cluster = 256;
-  /// Upper bound on the memory the solver may use [bytes]; 0 = what the machine has.
+  /// Upper bound on the process's resident size while it solves [bytes]
+  /// (core/memory_watch.hpp, resident_memory_limit_bytes); 0 = what the machine has.
   std::uint64_t max_memory_bytes = 0;
+  /// What the process holds besides the solver, counted into the estimate [bytes]; empty:
+  /// its resident size when the estimate is made (tests set it to make the estimate exact).
+  std::optional<std::uint64_t> held_bytes;
 };
 
-/// Bytes the fast path is expected to hold for `faces` faces (the guard's estimate: near
-/// field and low-rank factors at a typical rank, the exterior matrix of `exterior_pairs`
-/// panel pairs in `exterior_runs` runs (yukawa_near_field_rows counts them),
-/// preconditioner, Krylov bases of options.restart steps), with the far field kept as
-/// `far_field`: hmatrix, nested, or automatic for options.far_field (its own automatic taken
-/// as hmatrix).
+/// What the block partition of the Laplace row holds, counted before anything is assembled
+/// (count_partition): the part of the memory estimate that depends on the geometry (thin
+/// walls have both sides of the wall in many near-field blocks).
+struct HMatrixPartitionCounts {
+  double near_entries = 0.0;  ///< Σ over dense blocks of o·|τ| × g·|σ| (o = 1, g = 2)
+  double admissible_edges = 0.0;  ///< Σ over admissible blocks of o·|τ| + g·|σ|
+  double largest_admissible_edge = 0.0;  ///< the largest o·|τ| + g·|σ| of one block
+};
+
+/// The counts of `partition` on `tree` for the Laplace row [−K0 | V0].
+HMatrixPartitionCounts count_partition(const ClusterTree& tree, const BlockPartition& partition);
+
+/// Bytes the fast path holds at its peak for `faces` faces, as an upper bound: the near
+/// field (exact, from `counts`; modelled on a sphere without them), the low-rank factors at
+/// kBoundRank per block edge, the exterior matrix of `exterior_pairs` panel pairs in
+/// `exterior_runs` runs (yukawa_near_field_rows counts them), the preconditioner and coarse
+/// space, the Krylov bases of options.restart steps and the product's work arrays, the
+/// cross approximation's work arrays on every thread, all times kPeakSafetyFactor (measured,
+/// docs/reliability.md, "Estimate and peak"), plus `held_bytes` (what the process holds
+/// already: the meshes, panels, cluster tree). The far field kept as `far_field`: hmatrix,
+/// nested, or automatic for options.far_field (its own automatic taken as hmatrix).
 std::uint64_t hmatrix_solver_memory_estimate(
     Eigen::Index faces, std::uint64_t exterior_pairs, std::uint64_t exterior_runs,
     const HMatrixSolverOptions& options,
-    HMatrixSolverOptions::FarField far_field = HMatrixSolverOptions::FarField::automatic);
+    HMatrixSolverOptions::FarField far_field = HMatrixSolverOptions::FarField::automatic,
+    const HMatrixPartitionCounts* counts = nullptr, std::uint64_t held_bytes = 0);
+
+/// Bytes the fast path needs at least for `faces` faces, whatever the geometry: the
+/// preconditioner's factors and the Krylov bases at the shortest restart the guard may
+/// choose. A check before remeshing: a mesh of that many faces cannot fit below it.
+std::uint64_t hmatrix_solver_minimum_bytes(Eigen::Index faces, const HMatrixSolverOptions& options);
 
 /// Solves for s_1, s_2, s_3 on a closed, outward-oriented mesh. Throws ResourceError if the
 /// estimate does not fit and NumericalError if GMRES does not reach the tolerance or the

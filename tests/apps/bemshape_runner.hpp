@@ -63,11 +63,13 @@ inline std::string scratch(const std::string& name) {
   return (scratch_folder() / name).string();
 }
 
-/// Runs `bemshape <arguments>` (arguments already shell-quoted), capturing stdout and stderr.
-inline Run run_bemshape(const std::string& arguments) {
+/// Runs `bemshape <arguments>` (arguments already shell-quoted), capturing stdout and stderr;
+/// `environment`: "NAME=value ..." set for this run only.
+inline Run run_bemshape(const std::string& arguments, const std::string& environment = "") {
   const fs::path err_file = scratch_folder() / "stderr.txt";
-  const std::string command =
-      std::string("'") + BEMSHAPE_EXECUTABLE + "' " + arguments + " 2>'" + err_file.string() + "'";
+  const std::string command = (environment.empty() ? "" : "env " + environment + " ") +
+                              std::string("'") + BEMSHAPE_EXECUTABLE + "' " + arguments + " 2>'" +
+                              err_file.string() + "'";
   Run r;
   const auto start = std::chrono::steady_clock::now();
   FILE* pipe = ::popen(command.c_str(), "r");

@@ -11,6 +11,7 @@
 #include <fstream>
 #include <thread>
 
+#include "geometry/labelled_parts.hpp"
 #include "geometry/primitive_meshes.hpp"
 #include "tests/apps/bemshape_runner.hpp"
 
@@ -23,6 +24,11 @@ namespace {
 /// about 2400 solver faces; dense: a 4800² system (0.37 GB), a minute of assembly on two
 /// cores; H-matrix (the default above 2000 faces): about 45 s.
 const char* kSlowOptions = " --h0 0.3 --max-edge 0.055";
+
+/// The memory watch's limit in the running-account test [bytes]: above what the process
+/// holds when the watch starts, below the H-matrix assembly's peak on the slow ball (4280
+/// solver faces; its estimated peak is 0.16 GB).
+constexpr unsigned long long kAccountLimit = 100'000'000;
 
 std::string slow_ball() {
   static const std::string path = write_mesh(geometry::make_geodesic_sphere(0.5, 8), "slow_ball.stl");
@@ -190,7 +196,7 @@ TEST_CASE("max-memory with units: too small is refused naming the option, bad un
   r = run_bemshape("thickness '" + mesh + "' --h0 0.3 --max-edge 0.3 --max-memory 0.5GiB --quiet");
   CAPTURE(r.err);
   CHECK(r.exit_code == 0);
-  r = run_bemshape("thickness '" + mesh + "' --h0 0.3 --max-edge 0.3 --max-memory 3 --quiet");
+  r = run_bemshape("thickness '" + mesh + "' --h0 0.3 --max-edge 0.3 --max-memory 500 --quiet");
   CHECK(r.exit_code == 0);  // plain number: MB
 }
 
@@ -207,6 +213,48 @@ TEST_CASE("hmatrix --max-memory: the exterior matrix's size follows the element 
   CHECK(r.exit_code == 2);
   CHECK_THAT(r.err, Catch::Contains("the hierarchical-matrix BEM system of") &&
                         Catch::Contains("(--max-memory)") && Catch::Contains("--max-edge"));
+}
+
+TEST_CASE("hmatrix --max-memory: a part whose estimate exceeds it is refused in seconds") {
+  // The tube (labelled part, 3 mm wall) at --max-edge 1.5: about 15000 solver faces, whose
+  // estimated peak is several times 150 MB; refused after remeshing, before any assembly.
+  const std::string mesh = write_mesh(geometry::make_labelled_part("tube").mesh, "tube.stl");
+  const std::string out = scratch("tube_refused.csv");
+  const Run r = run_bemshape("thickness '" + mesh +
+                             "' --h0 3 --max-edge 1.5 --max-memory 150MB --quiet -o '" + out + "'");
+  CAPTURE(r.err, r.seconds);
+  CHECK(r.exit_code == 2);
+  CHECK_THAT(r.first_error_line(),
+             Catch::StartsWith("bemshape: error: " + mesh +
+                               ": the hierarchical-matrix BEM system of ") &&
+                 Catch::Contains(" GB (estimated peak of the process) but only 0.15 GB may be "
+                                 "used (--max-memory); use a coarser mesh (larger --max-edge)") &&
+                 Catch::EndsWith("or a larger --max-memory"));
+  CHECK(r.seconds < 60.0);  // remeshing and counting; nothing assembled
+  CHECK_FALSE(fs::exists(out));
+}
+
+TEST_CASE("the running account stops an assembly whose estimate fitted, exit 2, no output") {
+  // The estimate is checked against the machine's memory and fits; the memory watch's own
+  // limit is set below what the assembly reaches (BEMSHAPE_TEST_RESIDENT_LIMIT, the watch's
+  // test hook), as if the estimate had been low: the run stops during the assembly with
+  // the watch's message, and the existing output stays as it was.
+  const std::string out = scratch("account.csv");
+  const std::string before = "previous result\n";
+  std::ofstream(out, std::ios::binary) << before;
+  const Run r = run_bemshape("thickness '" + slow_ball() + "'" + kSlowOptions +
+                             " --solver hmatrix --quiet -o '" + out + "'",
+                             "BEMSHAPE_TEST_RESIDENT_LIMIT=" + std::to_string(kAccountLimit));
+  CAPTURE(r.err, r.seconds);
+  CHECK(r.exit_code == 2);
+  CHECK_THAT(r.first_error_line(),
+             Catch::StartsWith("bemshape: error: " + slow_ball() +
+                               ": the hierarchical-matrix BEM system of ") &&
+                 Catch::Contains(" GB it may use (BEMSHAPE_TEST_RESIDENT_LIMIT); stopped cleanly, "
+                                 "no output file was written or changed; use a coarser mesh"));
+  CHECK(r.seconds < 60.0);
+  CHECK(slurp(out) == before);
+  CHECK(temporaries_of("account.csv") == 0);
 }
 
 namespace {

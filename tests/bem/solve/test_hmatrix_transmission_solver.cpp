@@ -123,13 +123,17 @@ TEST_CASE("H-matrix solver: short of memory, the GMRES restart is shortened down
   const bem::ClusterTree tree(panels);
   bem::HMatrixSolverOptions options;
   options.far_field = bem::HMatrixSolverOptions::FarField::hmatrix;
+  options.held_bytes = 0;  // the estimate without the test process's own memory
   const auto rows =
       bem::yukawa_near_field_rows(panels, tree, kParameters.kappa, options.aca_tolerance);
+  const bem::HMatrixPartitionCounts counts =
+      bem::count_partition(tree, bem::partition_blocks(tree, options.eta));
   const auto estimate = [&](int restart) {
     bem::HMatrixSolverOptions o = options;
     o.restart = restart;
     return bem::hmatrix_solver_memory_estimate(mesh.num_faces(), std::uint64_t(rows.pairs.sum()),
-                                               std::uint64_t(rows.runs.sum()), o);
+                                               std::uint64_t(rows.runs.sum()), o, o.far_field,
+                                               &counts, 0);
   };
   REQUIRE(estimate(40) < estimate(50));
   options.max_memory_bytes = estimate(40) + 1;  // 60 and 50 do not fit, 40 does
