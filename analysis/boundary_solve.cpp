@@ -63,6 +63,9 @@ BoundarySolve solve_boundary(const geometry::PreparedMesh& input, const SolveOpt
           "; use a coarser mesh (larger --max-edge)" +
           (reason == " (--max-memory)" ? " or a larger --max-memory" : ""));
   }
+  set_memory_context(source + ": remeshing to edge " + number_text(run.max_edge, 3) + " (" +
+                         run.max_edge_rule + ")",
+                     "use a coarser mesh (larger --max-edge) or a larger --max-memory");
   // Each stage is announced when it starts: the libraries report their first progress only
   // after some work, and a display ends the previous stage when a new name arrives.
   report_progress(progress, "remeshing", 0.0);

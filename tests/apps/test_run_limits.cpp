@@ -216,18 +216,19 @@ TEST_CASE("hmatrix --max-memory: the exterior matrix's size follows the element 
 }
 
 TEST_CASE("hmatrix --max-memory: a part whose estimate exceeds it is refused in seconds") {
-  // The tube (labelled part, 3 mm wall) at --max-edge 1.5: about 15000 solver faces, whose
-  // estimated peak is several times 150 MB; refused after remeshing, before any assembly.
+  // The tube (labelled part, 3 mm wall) at --max-edge 1: 72328 solver faces (the facet
+  // creases of its 128-sided cylinders), whose estimated peak is 2.28 GB; refused after
+  // remeshing (the process then holds about 0.15 GB), before any assembly.
   const std::string mesh = write_mesh(geometry::make_labelled_part("tube").mesh, "tube.stl");
   const std::string out = scratch("tube_refused.csv");
   const Run r = run_bemshape("thickness '" + mesh +
-                             "' --h0 3 --max-edge 1.5 --max-memory 150MB --quiet -o '" + out + "'");
+                             "' --h0 3 --max-edge 1 --max-memory 250MB --quiet -o '" + out + "'");
   CAPTURE(r.err, r.seconds);
   CHECK(r.exit_code == 2);
   CHECK_THAT(r.first_error_line(),
              Catch::StartsWith("bemshape: error: " + mesh +
                                ": the hierarchical-matrix BEM system of ") &&
-                 Catch::Contains(" GB (estimated peak of the process) but only 0.15 GB may be "
+                 Catch::Contains(" GB (estimated peak of the process) but only 0.25 GB may be "
                                  "used (--max-memory); use a coarser mesh (larger --max-edge)") &&
                  Catch::EndsWith("or a larger --max-memory"));
   CHECK(r.seconds < 60.0);  // remeshing and counting; nothing assembled
