@@ -45,6 +45,14 @@ CASES = [
     ("hollow box, edge 0.025, H2", ["hollow-box", "1", "0.1", "0.025"],
      ["--h0", "0.1", "--max-edge", "0.025", "--solver", "hmatrix", "--far-field", "nested"]),
     ("large-tray, h0 3, edge 3", ["part", "large-tray"], ["--h0", "3", "--max-edge", "3"]),
+    # Small runs, a minute or less each on two cores.
+    ("sphere 0.5, dense, edge 0.09", ["sphere", "0.5", "0.09"], ["--h0", "0.3", "--solver", "dense"]),
+    ("sphere 0.5, edge 0.04", ["sphere", "0.5", "0.04"],
+     ["--h0", "0.3", "--max-edge", "0.04", "--solver", "hmatrix"]),
+    ("hollow box 1, wall 0.1, edge 0.08", ["hollow-box", "1", "0.1", "0.08"],
+     ["--h0", "0.1", "--max-edge", "0.08", "--solver", "hmatrix"]),
+    ("l-bracket, h0 3, edge 2", ["part", "l-bracket"], ["--h0", "3", "--max-edge", "2"]),
+    ("large-tray, h0 3, edge 8", ["part", "large-tray"], ["--h0", "3", "--max-edge", "8"]),
 ]
 
 
