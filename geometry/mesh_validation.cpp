@@ -1,4 +1,5 @@
 #include "geometry/mesh_validation.hpp"
+#include "geometry/union_find.hpp"
 
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -36,20 +37,6 @@ std::vector<EdgeUse> sorted_edge_uses(const Eigen::MatrixX3i& faces) {
   });
   return uses;
 }
-
-struct UnionFind {
-  std::vector<int> parent;
-  explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
-  int find(int x) {
-    while (parent[static_cast<std::size_t>(x)] != x) {
-      parent[static_cast<std::size_t>(x)] =
-          parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(x)])];
-      x = parent[static_cast<std::size_t>(x)];
-    }
-    return x;
-  }
-  void unite(int a, int b) { parent[static_cast<std::size_t>(find(a))] = find(b); }
-};
 
 /// Calls visit(first, last) for each run of uses of the same edge.
 template <typename Visit>

@@ -1,4 +1,5 @@
 #include "geometry/nonmanifold_split.hpp"
+#include "geometry/union_find.hpp"
 
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -15,20 +16,6 @@ namespace {
 struct EdgeUse {
   int lo, hi, face, corner;
   bool forward;
-};
-
-struct UnionFind {
-  std::vector<int> parent;
-  explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
-  int find(int x) {
-    while (parent[static_cast<std::size_t>(x)] != x) {
-      parent[static_cast<std::size_t>(x)] =
-          parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(x)])];
-      x = parent[static_cast<std::size_t>(x)];
-    }
-    return x;
-  }
-  void unite(int a, int b) { parent[static_cast<std::size_t>(find(a))] = find(b); }
 };
 
 /// Position of vertex v among the corners of face f (0, 1, 2).

@@ -12,6 +12,7 @@
 #include "geometry/detail/cgal_mesh_repair.hpp"
 #include "geometry/mesh_validation.hpp"
 #include "geometry/surface_mesh.hpp"
+#include "geometry/union_find.hpp"
 
 namespace bemshape::geometry {
 namespace {
@@ -31,20 +32,6 @@ std::string point(const Eigen::Vector3d& p) {
 std::string counted(std::size_t n, const char* singular, const char* plural) {
   return std::to_string(n) + " " + (n == 1 ? singular : plural);
 }
-
-struct UnionFind {
-  std::vector<int> parent;
-  explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
-  int find(int x) {
-    while (parent[static_cast<std::size_t>(x)] != x) {
-      parent[static_cast<std::size_t>(x)] =
-          parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(x)])];
-      x = parent[static_cast<std::size_t>(x)];
-    }
-    return x;
-  }
-  void unite(int a, int b) { parent[static_cast<std::size_t>(find(a))] = find(b); }
-};
 
 /// Signed volume (1/6) Σ a·(b×c) of the faces (all, or those with keep[f]).
 double signed_volume(const Eigen::MatrixX3d& v, const Eigen::MatrixX3i& f,
