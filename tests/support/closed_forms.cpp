@@ -82,6 +82,41 @@ Eigen::Vector3d ShellSolution::s(const Eigen::Vector3d& x) const {
   return radial_field(psi(x.norm()), x);
 }
 
+TubeSolution tube_solution(const PdeParameters& p, double inner_radius, double outer_radius) {
+  TubeSolution sol;
+  sol.inner_radius = inner_radius;
+  sol.outer_radius = outer_radius;
+  sol.kappa = p.kappa();
+  const double k = sol.kappa, r1 = inner_radius, r2 = outer_radius, jump = 1.0 / p.a_tilde();
+  // As for the shell: unknowns (A, B, C̃, D̃) with C̃ = C·I1(κR1), D̃ = D·K1(κR2), ψ
+  // continuous and ψ'_solid − ψ'_other = 1/ã on both cylinders.
+  const double i1 = std::cyl_bessel_i(1.0, k * r1), k1 = std::cyl_bessel_k(1.0, k * r2);
+  // I1' = I0 − I1/z, K1' = −K0 − K1/z.
+  const double di1 = std::cyl_bessel_i(0.0, k * r1) - i1 / (k * r1);
+  const double dk1 = -std::cyl_bessel_k(0.0, k * r2) - k1 / (k * r2);
+  Eigen::Matrix4d m;
+  Eigen::Vector4d rhs;
+  m << r2, 1.0 / r2, 0.0, -1.0,                          //
+      1.0, -1.0 / (r2 * r2), 0.0, -k * dk1 / k1,         //
+      r1, 1.0 / r1, -1.0, 0.0,                           //
+      1.0, -1.0 / (r1 * r1), -k * di1 / i1, 0.0;
+  rhs << 0.0, jump, 0.0, jump;
+  const Eigen::Vector4d c = m.partialPivLu().solve(rhs);
+  sol.A = c(0);
+  sol.B = c(1);
+  sol.C = c(2) / i1;
+  sol.D = c(3) / k1;
+  return sol;
+}
+
+double TubeSolution::psi(double rho) const {
+  if (rho < inner_radius) return C * std::cyl_bessel_i(1.0, kappa * rho);
+  if (rho <= outer_radius) return A * rho + B / rho;
+  return D * std::cyl_bessel_k(1.0, kappa * rho);
+}
+
+double TubeSolution::mid_radius() const { return std::sqrt(-B / A); }
+
 double plate_slope(const PdeParameters& p, double thickness) {
   return 2.0 / (p.a_tilde() * (p.kappa() * thickness + 2.0));
 }

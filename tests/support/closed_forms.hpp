@@ -63,6 +63,20 @@ double plate_slope(const PdeParameters& p, double thickness);
 /// A = 1/(ã(2 + z·K0(z)/K1(z))), z = κR; S = diag(A, A, 0).
 double rod_slope(const PdeParameters& p, double radius);
 
+/// Tube: the infinite cylindrical shell R1 < ρ < R2 around the z axis (a bore ρ < R1):
+/// s = ψ(ρ)·(x, y, 0)/ρ with ψ = A ρ + B/ρ in the solid, C·I1(κρ) in the bore, D·K1(κρ)
+/// outside. S = diag(ψ', ψ/ρ, 0) in (radial, tangential, axial); on the mid-surface ρ0 =
+/// √(−B/A), where ψ changes sign, S = diag(2A, 0, 0).
+struct TubeSolution {
+  double A = 0, B = 0, C = 0, D = 0, inner_radius = 0, outer_radius = 0, kappa = 0;
+  double psi(double rho) const;
+  /// dψ/dρ on the solid side.
+  double dpsi_solid(double rho) const { return A - B / (rho * rho); }
+  /// ρ0 = √(−B/A), where ψ changes sign in the solid.
+  double mid_radius() const;
+};
+TubeSolution tube_solution(const PdeParameters& p, double inner_radius, double outer_radius);
+
 /// The paper's 1-D solution on [K, L] with s(K) = s(L) = 0 and the solid [pos, pos + h]:
 /// s = c1 e^{λx} + c2 e^{−λx} left of the solid, c3 x + c4 inside, c5 e^{λx} + c6 e^{−λx}
 /// right of it, λ = √(α/ã). The constants are the paper's explicit formulas (section

@@ -1,0 +1,75 @@
+#pragma once
+// The thickness of the wall a surface point belongs to, read at the wall's mid-surface
+// (docs/theory.md, "Wall thickness"). Pure functions of values the caller has evaluated; the
+// search for the mid-surface is analysis/wall_thickness.hpp.
+//
+// The mid-surface of a wall is where the across-wall component of s changes sign (the set
+// the skeleton function marks). From a surface point x with outward normal n, the caller
+// follows x − τn inward to the first τ0 with s(x − τ0 n)·n = 0 and evaluates the feature
+// tensor S there, eigenvalues λ1 ≤ λ2 ≤ λ3. Two readings follow:
+//
+//   h_mid = h0(1/(h0²λ3) − a) − a·h0·(λ1⁺ + λ2⁺)/(2λ3)        (mid_surface_thickness)
+//
+// the principal thickness at the mid-surface, without the diffusion offset that curvature
+// adds (λ⁺ = max(λ, 0)): exact on a plate (λ1 = λ2 = 0), 2R + O(a·h0/κR) at the axis of a rod
+// (λ2 = λ3: the offset ½·a·h0 removed) and at the centre of a ball (λ1 = λ2 = λ3: a·h0
+// removed), and within 0.01 % of the wall of a tube, 0.1 % for a tube as thick as its bore
+// (the across-wall eigenvalue alone: the others vanish on its mid-surface;
+// tests/features/test_wall_thickness.cpp). Near a wall's rim the end face's source lowers λ3
+// at the mid-surface, and h_mid reads too thick (up to +50 % at a quarter of the wall from a
+// 4 mm plate's rim).
+//
+//   h_twice = 2·τ0                                            (twice the depth)
+//
+// exact on a flat wall up to its rims (the mid-surface of a symmetric wall stays in the
+// middle however near the rim, because s·n is odd across it), but off by ±t²H/2 on a
+// curved wall (H the mean curvature: the mid-surface of a harmonic field is not the
+// geometric middle; ±7 % on the inner and outer skin of a 30/24 mm tube).
+//
+// wall_thickness() takes h_mid, the exact reading wherever the mid-surface point is a
+// point of one wall, and turns to h_twice where the field there still carries another
+// surface's source: the part of s that is not across the wall, rim_indicator = |s(p0)| /
+// |s(x)·n| (s(p0)·n = 0 by construction), is 0 inside a wall, a tube or at the centre of a
+// rod, and 0.2–1.5 within half a wall of a rim. h_twice is not taken when it is far above
+// h_mid: then the search ran along the wall (from an end face or a hole's wall, where
+// h_twice is the length of the wall and h_mid its thickness).
+
+#include <algorithm>
+#include <cmath>
+
+#include <Eigen/Core>
+
+#include "features/thickness.hpp"
+
+namespace bemshape::features {
+
+/// h_mid [model units] from the ascending eigenvalues of S at the mid-surface point (see
+/// above); saturates at kMaxThicknessFactor·h0 where λ3 is not measurable.
+inline double mid_surface_thickness(const Eigen::Vector3d& eigenvalues, double h0, double a) {
+  const double lambda = eigenvalues(2);
+  if (!(h0 * h0 * lambda > kMinInverseThickness)) return kMaxThicknessFactor * h0;
+  const double offset =
+      a * h0 * (std::max(eigenvalues(0), 0.0) + std::max(eigenvalues(1), 0.0)) / (2.0 * lambda);
+  return std::max(0.0, h0 * (1.0 / (h0 * h0 * lambda) - a) - offset);
+}
+
+/// Rim indicators up to kRimFrom take h_mid alone, from kRimFull on h_twice alone, linearly
+/// in between. Measured on the labelled parts (geometry/labelled_parts.hpp): within a wall,
+/// a tube or a rod the indicator stays below 0.05; at a quarter of the wall from a rim it is
+/// 0.5–1, at half a wall 0.3, and h_mid is already within 1 % of the wall from where it
+/// drops below 0.1.
+inline constexpr double kRimFrom = 0.1;
+inline constexpr double kRimFull = 0.3;
+/// h_twice above this multiple of h_mid means the search ran along the wall, not across it.
+inline constexpr double kAlongWallRatio = 1.5;
+
+/// The wall thickness from the two readings and the rim indicator (see above) [model units].
+/// `twice_depth` may be NaN (no mid-surface point found along the normal): h_mid is used.
+inline double wall_thickness(double mid_thickness, double twice_depth, double rim_indicator) {
+  if (!std::isfinite(twice_depth) || twice_depth > kAlongWallRatio * mid_thickness)
+    return mid_thickness;
+  const double weight = std::clamp((rim_indicator - kRimFrom) / (kRimFull - kRimFrom), 0.0, 1.0);
+  return (1.0 - weight) * mid_thickness + weight * twice_depth;
+}
+
+}  // namespace bemshape::features
