@@ -6,7 +6,8 @@
 //   input mesh (validated, repaired: geometry/mesh_preparation.hpp)
 //     → solver mesh and boundary solution (analysis/boundary_solve.hpp)
 //     → features per face and vertex of the solver mesh (analysis/surface_features.hpp)
-//     → the selected thickness per solver face: h_p (principal) or h_f (paper)
+//     → the selected thickness per solver face: the wall thickness read at the mid-surface
+//       (wall, analysis/wall_thickness.hpp), h_p (principal) or h_f (paper)
 //     → area-weighted statistics and thin regions on the solver faces
 //       (analysis/thickness_statistics.hpp)
 //     → optionally the features carried back to the input mesh's vertices and faces.
@@ -22,10 +23,12 @@
 
 #include <Eigen/Core>
 
+#include "analysis/area_histogram.hpp"
 #include "analysis/boundary_solve.hpp"
 #include "analysis/stage_times.hpp"
 #include "analysis/surface_features.hpp"
 #include "analysis/thickness_statistics.hpp"
+#include "analysis/wall_thickness.hpp"
 #include "core/progress.hpp"
 #include "geometry/mesh_preparation.hpp"
 
@@ -33,39 +36,82 @@ namespace bemshape::analysis {
 
 /// Which thickness the statistics and the check use.
 enum class ThicknessMeasure {
-  principal,  ///< h_p, across the wall (inscribed-sphere diameter, the CAD meaning)
+  wall,       ///< the thickness of the wall a face belongs to, read at its mid-surface
+  principal,  ///< h_p at the surface point itself (an inscribed sphere's diameter there)
   paper       ///< h_f = h0(1/f_h − a), Yamada's f_h-based thickness
 };
 
+/// "wall", "principal" (alias "sphere") or "paper"; throws InputError naming the choices.
+ThicknessMeasure thickness_measure(const std::string& name);
+
+/// How edges and corners read under the wall measure (docs/theory.md, "Edges").
+enum class EdgeMode {
+  wall,  ///< every point reads the thickness of its wall, edges and corners included
+  exact  ///< the smaller of the wall and of h_p at the point: convex edges and corners, where
+         ///< the inscribed sphere at the point shrinks, read thinner (zero-radius edges: → 0)
+};
+
+/// "wall" or "exact"; throws InputError naming the choices.
+EdgeMode edge_mode(const std::string& name);
+
+/// Default smallest region, in units of h0²: a quarter of a square of side h0, below any
+/// feature a part is designed with at that h0 and above the few solver faces where three
+/// walls meet and the reading dips (docs/theory.md, "Wall thickness").
+inline constexpr double kSpeckArea = 0.25;
+/// Bins of the thickness's area histogram at most.
+inline constexpr int kHistogramBins = 12;
+
 struct ThicknessOptions {
   SolveOptions solve;  ///< h0, a, solver mesh, solver, memory
-  ThicknessMeasure measure = ThicknessMeasure::principal;
+  /// Replace solve.h0 by the part's own length 2·volume/area (part_h0): the wall thickness
+  /// of a plate exactly and of any thin-walled part nearly (ThicknessResult::h0_rule says so).
+  bool h0_from_part = false;
+  ThicknessMeasure measure = ThicknessMeasure::wall;
+  EdgeMode edges = EdgeMode::wall;  ///< measure wall only
   /// The check's threshold [model units], > 0: every edge-connected set of solver faces
   /// thinner than it is a thin region. Empty: no check.
   std::optional<double> min_thickness;
+  /// Thick regions [model units], > 0: every edge-connected set of measurable solver faces
+  /// thicker than it is a thick region. Empty: none.
+  std::optional<double> max_thickness;
+  /// Thin and thick regions smaller than this area [model units²] are dropped (specks of a
+  /// few faces where three walls meet); 0 keeps all. Empty: kSpeckArea·h0².
+  std::optional<double> min_region_area;
   /// Also carry the features over to the input mesh (ThicknessResult::input_features;
   /// costs closest-point queries of both meshes).
   bool map_to_input = true;
 };
+
+/// 2·V/A of a closed surface [model units]: t for a plate of thickness t (up to its rims),
+/// t/(1 + t/(2R)) ≈ t for a tube or shell wall of mid-radius R. Throws InputError if the
+/// volume is not positive.
+double part_h0(const geometry::MeshReport& report);
 
 /// Throws InputError for options out of range (min_thickness, then validate(solve)).
 void validate(const ThicknessOptions& options);
 
 struct ThicknessResult {
   geometry::PreparedMesh input;     ///< the validated, repaired input and its report
+  double h0 = 0.0;                  ///< the h0 used [model units]
+  std::string h0_rule;              ///< "--h0" or "2*volume/area of the part"
   BoundarySolve boundary;           ///< solver mesh, max edge and its rule, φ and q
   SurfaceFeatures solver_features;  ///< on boundary.solver_mesh (kFeatureColumns)
   SurfaceFeatures input_features;   ///< on input.mesh; empty unless map_to_input
-  int column = kColumnHp;           ///< column of the selected measure: kColumnHp or kColumnHf
-  std::string measure_column;       ///< "h_p" or "h_f"
+  int column = kColumnWall;         ///< column of the selected measure: kColumnWall, Hp or Hf
+  std::string measure_column;       ///< "wall", "h_p" or "h_f"
+  /// The mid-surface search per solver face (measure wall only; empty otherwise).
+  WallThickness wall;
   Eigen::VectorXd thickness;        ///< #F of the solver mesh: the selected measure per face
   ThicknessStatistics statistics;   ///< of `thickness` over the solver faces
   std::vector<ThinRegion> regions;  ///< below min_thickness, most severe first
+  std::vector<ThickRegion> thick_regions;  ///< above max_thickness, thickest first
+  double min_region_area = 0.0;     ///< the area below which regions were dropped
+  AreaHistogram histogram;          ///< area per thickness range, at most kHistogramBins
   /// Solver faces whose thickness h0(1/f − a) came out negative and was clamped to 0
   /// (features/thickness.hpp): f above 1/a, which only discretisation error produces.
   Eigen::Index clamped_faces = 0;
   /// Wall time of the stages: "read" (file input only), "refine", "assemble", "solve",
-  /// "features", "map_back" (map_to_input only).
+  /// "features", "wall" (measure wall only), "map_back" (map_to_input only).
   StageTimes times;
 };
 

@@ -1,5 +1,6 @@
 #include "analysis/surface_features.hpp"
 
+#include <limits>
 #include <vector>
 
 #include "bem/evaluate/surface_gradient.hpp"
@@ -15,6 +16,7 @@ Eigen::MatrixXd feature_columns(const features::FeatureField<3>& field) {
   values.col(kColumnHf) = field.h_f;
   values.col(kColumnHp) = field.h_p;
   values.middleCols(kColumnNf, 3) = field.n_f;
+  values.col(kColumnWall).setConstant(std::numeric_limits<double>::quiet_NaN());
   return values;
 }
 

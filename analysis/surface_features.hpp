@@ -25,7 +25,10 @@
 // Orientation vectors are renormalised after averaging (zero stays zero).
 //
 // Columns of every `values` matrix (kFeatureColumns):
-//   0 f_h [1], 1 h_f [model units], 2 h_p [model units], 3–5 n_f (unit vector)
+//   0 f_h [1], 1 h_f [model units], 2 h_p [model units], 3–5 n_f (unit vector),
+//   6 wall [model units]: the wall thickness read at the mid-surface
+//     (analysis/wall_thickness.hpp); NaN unless the caller computed it (measure_thickness
+//     does for its `wall` measure).
 
 #include <Eigen/Core>
 
@@ -35,8 +38,8 @@
 
 namespace bemshape::analysis {
 
-inline constexpr int kFeatureColumns = 6;
-inline constexpr int kColumnFh = 0, kColumnHf = 1, kColumnHp = 2, kColumnNf = 3;
+inline constexpr int kFeatureColumns = 7;
+inline constexpr int kColumnFh = 0, kColumnHf = 1, kColumnHp = 2, kColumnNf = 3, kColumnWall = 6;
 
 struct SurfaceFeatures {
   Eigen::MatrixXd vertex;  ///< #V×kFeatureColumns

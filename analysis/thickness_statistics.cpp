@@ -67,10 +67,18 @@ ThicknessStatistics thickness_statistics(const geometry::SurfaceMesh& mesh,
   return stats;
 }
 
-std::vector<ThinRegion> thin_regions(const geometry::SurfaceMesh& mesh,
-                                     const Eigen::VectorXd& thickness, double threshold) {
+namespace {
+
+/// The edge-connected sets of faces whose value is `selected`; `more_severe(t, e)` says
+/// whether value t is more severe than the region's extreme e so far (lower for thin, higher
+/// for thick), kept in the members `extreme` and `location`.
+template <class Region, class Selected, class MoreSevere>
+std::vector<Region> connected_regions(const geometry::SurfaceMesh& mesh,
+                                      const Eigen::VectorXd& thickness, Selected selected,
+                                      MoreSevere more_severe, double Region::*extreme,
+                                      Eigen::Vector3d Region::*location) {
   const Eigen::Index nf = mesh.num_faces();
-  // Union-find over thin faces joined through shared edges.
+  // Union-find over the selected faces joined through shared edges.
   std::vector<Eigen::Index> parent(static_cast<std::size_t>(nf));
   std::iota(parent.begin(), parent.end(), Eigen::Index{0});
   const auto root = [&parent](Eigen::Index f) {
@@ -83,7 +91,7 @@ std::vector<ThinRegion> thin_regions(const geometry::SurfaceMesh& mesh,
   };
   std::map<std::pair<int, int>, Eigen::Index> first_face_of_edge;
   for (Eigen::Index f = 0; f < nf; ++f) {
-    if (!(thickness(f) < threshold))
+    if (!selected(thickness(f)))
       continue;
     for (int k = 0; k < 3; ++k) {
       const int a = mesh.faces()(f, k), b = mesh.faces()(f, (k + 1) % 3);
@@ -93,32 +101,58 @@ std::vector<ThinRegion> thin_regions(const geometry::SurfaceMesh& mesh,
         parent[static_cast<std::size_t>(root(f))] = root(it->second);
     }
   }
-  std::map<Eigen::Index, ThinRegion> by_root;
+  std::map<Eigen::Index, Region> by_root;
   for (Eigen::Index f = 0; f < nf; ++f) {
-    if (!(thickness(f) < threshold))
+    if (!selected(thickness(f)))
       continue;
-    ThinRegion& region = by_root[root(f)];
+    Region& region = by_root[root(f)];
     const double area = mesh.face_areas()(f);
     const Eigen::Vector3d centroid = mesh.face_centroids().row(f);
-    if (region.faces == 0 || thickness(f) < region.minimum) {
-      region.minimum = thickness(f);
-      region.min_location = centroid;
+    if (region.faces == 0 || more_severe(thickness(f), region.*extreme)) {
+      region.*extreme = thickness(f);
+      region.*location = centroid;
+      region.extreme_face = static_cast<int>(f);
+    }
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector3d corner = mesh.vertices().row(mesh.faces()(f, k)).transpose();
+      region.box_min = region.faces == 0 && k == 0 ? corner : region.box_min.cwiseMin(corner);
+      region.box_max = region.faces == 0 && k == 0 ? corner : region.box_max.cwiseMax(corner);
     }
     ++region.faces;
     region.face_indices.push_back(static_cast<int>(f));
     region.area += area;
     region.centroid += area * centroid;
   }
-  std::vector<ThinRegion> regions;
+  std::vector<Region> regions;
   for (auto& [key, region] : by_root) {
     if (region.area > 0.0)
       region.centroid /= region.area;
     regions.push_back(region);
   }
-  std::sort(regions.begin(), regions.end(), [](const ThinRegion& x, const ThinRegion& y) {
-    return x.minimum != y.minimum ? x.minimum < y.minimum : x.area > y.area;
+  std::sort(regions.begin(), regions.end(), [&](const Region& x, const Region& y) {
+    return x.*extreme != y.*extreme ? more_severe(x.*extreme, y.*extreme) : x.area > y.area;
   });
   return regions;
+}
+
+}  // namespace
+
+std::vector<ThinRegion> thin_regions(const geometry::SurfaceMesh& mesh,
+                                     const Eigen::VectorXd& thickness, double threshold) {
+  return connected_regions<ThinRegion>(
+      mesh, thickness, [threshold](double t) { return t < threshold; },
+      [](double t, double extreme) { return t < extreme; }, &ThinRegion::minimum,
+      &ThinRegion::min_location);
+}
+
+std::vector<ThickRegion> thick_regions(const geometry::SurfaceMesh& mesh,
+                                       const Eigen::VectorXd& thickness, double threshold,
+                                       double unmeasurable_from) {
+  return connected_regions<ThickRegion>(
+      mesh, thickness,
+      [threshold, unmeasurable_from](double t) { return t > threshold && t < unmeasurable_from; },
+      [](double t, double extreme) { return t > extreme; }, &ThickRegion::maximum,
+      &ThickRegion::max_location);
 }
 
 }  // namespace bemshape::analysis

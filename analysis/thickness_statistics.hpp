@@ -15,6 +15,7 @@
 // edges. Regions are sorted by severity: thinnest minimum first, larger area first on ties.
 
 #include <cstddef>
+#include <limits>
 #include <vector>
 
 #include <Eigen/Core>
@@ -45,11 +46,37 @@ struct ThinRegion {
   double minimum = 0.0;                                    ///< thinnest face value [model units]
   Eigen::Vector3d min_location = Eigen::Vector3d::Zero();  ///< centroid of the thinnest face
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();      ///< area-weighted centroid
+  Eigen::Vector3d box_min = Eigen::Vector3d::Zero();       ///< bounding box of its faces
+  Eigen::Vector3d box_max = Eigen::Vector3d::Zero();
   std::vector<int> face_indices;                           ///< the `faces` faces, ascending
+  int extreme_face = -1;                                   ///< the thinnest face
+};
+
+/// A thick region: an edge-connected set of measurable faces thicker than a threshold (a
+/// mass of material a designer may want to core out), thickest first.
+struct ThickRegion {
+  std::size_t faces = 0;
+  double area = 0.0;                                       ///< [model units²]
+  double maximum = 0.0;                                    ///< thickest face value [model units]
+  Eigen::Vector3d max_location = Eigen::Vector3d::Zero();  ///< centroid of the thickest face
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();      ///< area-weighted centroid
+  Eigen::Vector3d box_min = Eigen::Vector3d::Zero();       ///< bounding box of its faces
+  Eigen::Vector3d box_max = Eigen::Vector3d::Zero();
+  std::vector<int> face_indices;                           ///< the `faces` faces, ascending
+  int extreme_face = -1;                                   ///< the thickest face
+  /// Where the thickest face's wall has its middle (the skeleton point its thickness was read
+  /// at), NaN when the measure has none (analysis/wall_thickness.hpp) [model units].
+  Eigen::Vector3d skeleton_point = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
 };
 
 /// Every edge-connected set of faces with thickness < threshold, most severe first.
 std::vector<ThinRegion> thin_regions(const geometry::SurfaceMesh& mesh,
                                      const Eigen::VectorXd& thickness, double threshold);
+
+/// Every edge-connected set of faces with unmeasurable_from > thickness > threshold, thickest
+/// first (faces at the saturation value, far from any opposite wall, are not thick walls).
+std::vector<ThickRegion> thick_regions(const geometry::SurfaceMesh& mesh,
+                                       const Eigen::VectorXd& thickness, double threshold,
+                                       double unmeasurable_from);
 
 }  // namespace bemshape::analysis

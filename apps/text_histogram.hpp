@@ -6,6 +6,7 @@
 
 #include <string>
 
+#include "analysis/area_histogram.hpp"
 #include "analysis/histogram.hpp"
 
 namespace bemshape::apps {
@@ -15,5 +16,10 @@ namespace bemshape::apps {
 /// `bar_width` characters) and the count. Every line starts with `indent`.
 std::string format_histogram(const analysis::Histogram& histogram, double scale,
                              const std::string& unit, int bar_width, const std::string& indent);
+
+/// The same for an area histogram: one line per bin with its edges, a bar proportional to the
+/// bin's area and the bin's share of the measured area in %.
+std::string format_area_histogram(const analysis::AreaHistogram& histogram, int bar_width,
+                                  const std::string& indent);
 
 }  // namespace bemshape::apps

@@ -11,6 +11,7 @@
 #include <optional>
 #include <string>
 
+#include "analysis/area_histogram.hpp"
 #include "analysis/measure_thickness.hpp"
 #include "analysis/stage_times.hpp"
 #include "apps/exit_codes.hpp"
@@ -23,6 +24,7 @@
 #include "apps/report_text.hpp"
 #include "apps/run_limits.hpp"
 #include "apps/solver_mesh_options.hpp"
+#include "apps/text_histogram.hpp"
 #include "apps/thickness_html_report.hpp"
 #include "core/errors.hpp"
 #include "core/memory.hpp"
@@ -36,6 +38,8 @@ using analysis::kColumnFh;
 using analysis::kColumnHf;
 using analysis::kColumnHp;
 using analysis::kColumnNf;
+using analysis::kColumnWall;
+using analysis::ThickRegion;
 using analysis::StageTimes;
 using analysis::SurfaceFeatures;
 using analysis::ThicknessResult;
@@ -47,8 +51,11 @@ struct ThicknessOptions {
   std::string input;
   std::optional<double> h0;
   double a = 0.2;
-  std::string measure = "principal";
+  std::string measure = "wall";
+  std::string edges = "wall";
   std::optional<double> min_thickness;
+  std::optional<double> max_thickness;
+  std::optional<double> min_region_area;
   std::optional<double> max_edge;
   double sharp_angle = geometry::RemeshingOptions{}.sharp_angle_degrees;
   std::string output;
@@ -112,10 +119,16 @@ void write_output(const std::string& path, OutputFormat format, const geometry::
       const Eigen::MatrixXd vfh = v.vertex.col(kColumnFh), ffh = v.face.col(kColumnFh);
       const Eigen::MatrixXd vn = v.vertex.middleCols(kColumnNf, 3);
       const Eigen::MatrixXd fn = v.face.middleCols(kColumnNf, 3);
-      output::write_vtp(
-          path, mesh.vertices(), mesh.faces(),
-          {{"thickness", &vt}, {"h_f", &vhf}, {"h_p", &vhp}, {"f_h", &vfh}, {"n_f", &vn}},
-          {{"thickness", &ft}, {"h_f", &fhf}, {"h_p", &fhp}, {"f_h", &ffh}, {"n_f", &fn}});
+      const Eigen::MatrixXd vw = v.vertex.col(kColumnWall), fw = v.face.col(kColumnWall);
+      std::vector<output::MeshField> point_fields = {
+          {"thickness", &vt}, {"h_f", &vhf}, {"h_p", &vhp}, {"f_h", &vfh}, {"n_f", &vn}};
+      std::vector<output::MeshField> cell_fields = {
+          {"thickness", &ft}, {"h_f", &fhf}, {"h_p", &fhp}, {"f_h", &ffh}, {"n_f", &fn}};
+      if (result.column == kColumnWall) {
+        point_fields.push_back({"wall", &vw});
+        cell_fields.push_back({"wall", &fw});
+      }
+      output::write_vtp(path, mesh.vertices(), mesh.faces(), point_fields, cell_fields);
       return;
     }
     case OutputFormat::ply: {
@@ -131,14 +144,20 @@ void write_output(const std::string& path, OutputFormat format, const geometry::
       return;
     }
     case OutputFormat::csv: {
-      Eigen::MatrixXd rows(mesh.num_vertices(), 9);
+      const bool wall = result.column == kColumnWall;
+      Eigen::MatrixXd rows(mesh.num_vertices(), wall ? 10 : 9);
       rows.leftCols(3) = mesh.vertices();
       rows.col(3) = v.vertex.col(result.column);
       rows.col(4) = v.vertex.col(kColumnHf);
       rows.col(5) = v.vertex.col(kColumnHp);
-      rows.rightCols(3) = v.vertex.middleCols(kColumnNf, 3);
-      output::write_csv(path, {"x", "y", "z", "thickness", "h_f", "h_p", "n_x", "n_y", "n_z"},
-                        rows);
+      rows.middleCols(6, 3) = v.vertex.middleCols(kColumnNf, 3);
+      std::vector<std::string> names = {"x", "y", "z", "thickness", "h_f", "h_p",
+                                        "n_x", "n_y", "n_z"};
+      if (wall) {
+        rows.col(9) = v.vertex.col(kColumnWall);
+        names.push_back("wall");
+      }
+      output::write_csv(path, names, rows);
       return;
     }
   }
@@ -150,9 +169,10 @@ std::vector<std::pair<std::string, std::string>> html_parameters(const Thickness
                                                                  const ThicknessResult& result) {
   const analysis::BoundarySolve& run = result.boundary;
   return {{"input", options.input},
-          {"h0", number_text(h0, 6)},
+          {"h0", number_text(h0, 6) + " (" + result.h0_rule + ")"},
           {"a", number_text(options.a, 6)},
           {"measure", options.measure},
+          {"edges", options.edges},
           {"min thickness",
            options.min_thickness ? number_text(*options.min_thickness, 6) : "none"},
           {"max edge", number_text(run.max_edge, 6) + " (" + run.max_edge_rule + ")"},
@@ -171,8 +191,9 @@ void print_report(std::ostream& out, const ThicknessOptions& options, double h0,
   const ThicknessStatistics& s = result.statistics;
   const auto& sr = run.solution.report;
   out << "bemshape thickness: " << options.input << "  (lengths in the input file's units)\n"
-      << "  parameters   h0 " << number_text(h0, 6) << ", a " << number_text(options.a, 6)
-      << ", measure " << options.measure << " (" << result.measure_column << "), max edge "
+      << "  parameters   h0 " << number_text(h0, 6) << " (" << result.h0_rule << "), a "
+      << number_text(options.a, 6) << ", measure " << options.measure << " ("
+      << result.measure_column << "), edges " << options.edges << ", max edge "
       << number_text(run.max_edge, 6) << " (" << run.max_edge_rule << ")\n"
       << "  mesh         " << result.input.report.faces << " input faces, "
       << run.solver_mesh.num_faces() << " solver faces (longest edge "
@@ -184,6 +205,8 @@ void print_report(std::ostream& out, const ThicknessOptions& options, double h0,
       << "               p05 " << number_text(s.p05, 6) << ", median " << number_text(s.median, 6)
       << ", mean " << number_text(s.mean, 6) << ", p95 " << number_text(s.p95, 6) << ", max "
       << number_text(s.maximum, 6) << '\n';
+  out << "  histogram    area per thickness range\n"
+      << format_area_histogram(result.histogram, 30, "    ");
   if (s.unmeasurable_area > 0.0)
     out << "               not measurable (no opposite wall within reach of h0) on area "
         << number_text(s.unmeasurable_area, 6) << " of "
@@ -216,6 +239,23 @@ void print_report(std::ostream& out, const ThicknessOptions& options, double h0,
             << " more in the JSON report (--report)\n";
     }
   }
+  if (options.max_thickness) {
+    out << "  thick        " << result.thick_regions.size() << " region"
+        << (result.thick_regions.size() == 1 ? "" : "s") << " thicker than "
+        << number_text(*options.max_thickness, 6) << '\n';
+    for (std::size_t i = 0; i < std::min(result.thick_regions.size(), kPrintedRegions); ++i) {
+      const ThickRegion& r = result.thick_regions[i];
+      out << "    " << i + 1 << ". max " << number_text(r.maximum, 6) << " at "
+          << point_text(r.max_location);
+      if (r.skeleton_point.allFinite())
+        out << " (wall middle " << point_text(r.skeleton_point) << ")";
+      out << ", area " << number_text(r.area, 6) << ", centroid " << point_text(r.centroid)
+          << '\n';
+    }
+    if (result.thick_regions.size() > kPrintedRegions)
+      out << "    ... " << result.thick_regions.size() - kPrintedRegions
+          << " more in the JSON report (--report)\n";
+  }
   out << "  timing      ";
   for (const auto& [stage, seconds] : times.stages())
     out << ' ' << stage << ' ' << seconds_text(seconds) << " s,";
@@ -231,15 +271,11 @@ void print_report(std::ostream& out, const ThicknessOptions& options, double h0,
 
 void run_thickness(const ThicknessOptions& options, int& exit_code) {
   StageTimes times;
-  if (options.measure != "principal" && options.measure != "paper")
-    throw InputError("--measure must be 'principal' (h_p, the default) or 'paper' (h_f), got '" +
-                     options.measure + "'");
-  const double h0 = options.h0 ? *options.h0 : options.min_thickness.value_or(0.0);
-  if (!options.h0 && !options.min_thickness)
-    throw InputError(
-        "--h0 is required (or --min-thickness, which sets it): choose about the "
-        "smallest wall thickness of interest, in the input file's units (e.g. --h0 2 "
-        "for 2 mm walls in a file in mm)");
+  const analysis::ThicknessMeasure measure = analysis::thickness_measure(options.measure);
+  const analysis::EdgeMode edges = analysis::edge_mode(options.edges);
+  // h0: --h0, else --min-thickness, else the part's 2·volume/area (analysis::part_h0).
+  const bool h0_from_part = !options.h0 && !options.min_thickness;
+  const double h0_given = options.h0 ? *options.h0 : options.min_thickness.value_or(1.0);
   if (options.min_thickness &&
       !(std::isfinite(*options.min_thickness) && *options.min_thickness > 0.0))
     throw InputError("--min-thickness must be a positive length, got " +
@@ -257,14 +293,18 @@ void run_thickness(const ThicknessOptions& options, int& exit_code) {
 
   ProgressDisplay display(options.quiet);
   analysis::ThicknessOptions job;
-  job.solve = solve_options(h0, options.a, options.max_edge, options.sharp_angle, options.solver,
-                            options.max_memory_bytes);
-  job.measure = options.measure == "paper" ? analysis::ThicknessMeasure::paper
-                                           : analysis::ThicknessMeasure::principal;
+  job.solve = solve_options(h0_given, options.a, options.max_edge, options.sharp_angle,
+                            options.solver, options.max_memory_bytes);
+  job.h0_from_part = h0_from_part;
+  job.measure = measure;
+  job.edges = edges;
   job.min_thickness = options.min_thickness;
+  job.max_thickness = options.max_thickness;
   job.map_to_input = format != OutputFormat::none;
+  job.min_region_area = options.min_region_area;
   const ThicknessResult result =
       analysis::measure_thickness(fs::path(options.input), job, display.callback());
+  const double h0 = result.h0;
   times.add(result.times);
   if (format != OutputFormat::none)
     times.time("write", [&] {
@@ -322,15 +362,28 @@ void register_thickness_command(CLI::App& app, int& exit_code) {
       ->required();
   cmd->add_option("--h0", options->h0,
                   "Characteristic length: about the smallest wall thickness of interest, in the "
-                  "file's units (default: --min-thickness)");
+                  "file's units (default: --min-thickness, else 2*volume/area of the part, the "
+                  "wall of a plate)");
   cmd->add_option("--a", options->a, "Dimensionless diffusion parameter a of the PDE")
       ->capture_default_str();
   cmd->add_option("--measure", options->measure,
-                  "principal: h_p, across the wall (inscribed-sphere diameter, CAD meaning); "
-                  "paper: h_f, Yamada's f_h-based thickness")
+                  "wall: the thickness of the wall each point belongs to, read at the wall's "
+                  "mid-surface; sphere (alias principal): h_p at the point, the inscribed "
+                  "sphere's diameter there (larger near rims); paper: h_f, Yamada's f_h-based "
+                  "thickness")
+      ->capture_default_str();
+  cmd->add_option("--edges", options->edges,
+                  "wall: edges and corners read their walls' thickness; exact: also the "
+                  "inscribed sphere at the point, so convex edges read thinner (measure wall)")
       ->capture_default_str();
   cmd->add_option("--min-thickness", options->min_thickness,
                   "Check: fail (exit 1) if any wall is thinner than this; lists the thin regions");
+  cmd->add_option("--max-thickness", options->max_thickness,
+                  "List the thick regions (hot spots for moulding and casting): walls thicker "
+                  "than this, located at their thickest point and its wall's middle");
+  cmd->add_option("--min-region-area", options->min_region_area,
+                  "Drop thin and thick regions smaller than this area, in the file's units "
+                  "squared (default: h0^2/4)");
   add_solver_mesh_options(*cmd, options->max_edge, options->sharp_angle);
   add_solver_choice_options(*cmd, options->solver);
   cmd->add_option("-o,--output", options->output,

@@ -30,12 +30,16 @@
 // point of one wall, and turns to h_twice where the field there still carries another
 // surface's source: the part of s that is not across the wall, rim_indicator = |s(p0)| /
 // |s(x)·n| (s(p0)·n = 0 by construction), is 0 inside a wall, a tube or at the centre of a
-// rod, and 0.2–1.5 within half a wall of a rim. h_twice is not taken when it is far above
-// h_mid: then the search ran along the wall (from an end face or a hole's wall, where
-// h_twice is the length of the wall and h_mid its thickness).
+// rod, and 0.2–1.5 within half a wall of a rim. When h_twice is far above h_mid the search
+// ran along the wall, not across it (from an end face, a rim face or a hole's wall, where
+// h_twice is the length of the wall): neither reading is that face's wall — h_mid at such a
+// p0 reads the wall's extent in its own plane, which near a corner of the part is small — and
+// wall_thickness() gives NaN; the caller gives such faces their neighbours' value (the wall
+// the rim bounds).
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <Eigen/Core>
 
@@ -65,9 +69,12 @@ inline constexpr double kAlongWallRatio = 1.5;
 
 /// The wall thickness from the two readings and the rim indicator (see above) [model units].
 /// `twice_depth` may be NaN (no mid-surface point found along the normal): h_mid is used.
+/// NaN when the search ran along the wall (twice_depth > kAlongWallRatio·mid_thickness).
 inline double wall_thickness(double mid_thickness, double twice_depth, double rim_indicator) {
-  if (!std::isfinite(twice_depth) || twice_depth > kAlongWallRatio * mid_thickness)
+  if (!std::isfinite(twice_depth))
     return mid_thickness;
+  if (twice_depth > kAlongWallRatio * mid_thickness)
+    return std::numeric_limits<double>::quiet_NaN();
   const double weight = std::clamp((rim_indicator - kRimFrom) / (kRimFull - kRimFrom), 0.0, 1.0);
   return (1.0 - weight) * mid_thickness + weight * twice_depth;
 }

@@ -26,32 +26,17 @@ namespace {
 
 using analysis::ThicknessMeasure;
 
-/// Raises NotImplementedError: an option of the Python API that this build's library lacks.
-[[noreturn]] void not_in_this_build(const std::string& message) {
-  PyErr_SetString(PyExc_NotImplementedError, message.c_str());
-  throw py::error_already_set();
-}
-
 /// The measure's name, as the command line's --measure takes it.
 std::string measure_name(ThicknessMeasure measure) {
   switch (measure) {
+    case ThicknessMeasure::wall:
+      return "wall";
     case ThicknessMeasure::principal:
       return "principal";
     case ThicknessMeasure::paper:
       return "paper";
   }
   return "";
-}
-
-ThicknessMeasure measure_from_name(const std::string& name) {
-  if (name == "principal")
-    return ThicknessMeasure::principal;
-  if (name == "paper")
-    return ThicknessMeasure::paper;
-  if (name == "wall")
-    not_in_this_build("measure='wall' is not in this build of bemshape (its library has the "
-                      "measures 'principal' and 'paper')");
-  throw InputError("measure must be 'principal' (h_p) or 'paper' (h_f), got '" + name + "'");
 }
 
 /// Bytes from max_memory (a positive number of bytes), 0 for None.
@@ -73,6 +58,7 @@ py::dict feature_views(const Eigen::MatrixXd& values, int column, const py::caps
   d["h_f"] = column_view(values, analysis::kColumnHf, owner);
   d["h_p"] = column_view(values, analysis::kColumnHp, owner);
   d["n_f"] = columns_view(values, analysis::kColumnNf, 3, owner);
+  d["wall"] = column_view(values, analysis::kColumnWall, owner);
   return d;
 }
 
@@ -90,23 +76,19 @@ py::dict thickness(const py::handle& V, const py::handle& F, std::optional<doubl
                    const std::string& far_field, double tolerance, std::optional<int> threads,
                    std::optional<double> max_memory, py::object progress,
                    const std::string& name) {
-  if (max_thickness)
-    not_in_this_build("max_thickness (thick regions) is not in this build of bemshape: its "
-                      "library checks min_thickness only");
   const Eigen::MatrixX3d vertices = positions_from_array(V, "V");
   const Eigen::MatrixX3i faces = indices_from_array(F, "F");
-  if (!h0 && !min_thickness)
-    throw InputError("h0 is required (or min_thickness, which sets it): choose about the "
-                     "smallest wall thickness of interest, in the units of V (e.g. h0=2 for "
-                     "2 mm walls in mm)");
   analysis::ThicknessOptions job;
+  // h0: h0, else min_thickness, else 2·volume/area of the part (analysis::part_h0).
+  job.h0_from_part = !h0 && !min_thickness;
   job.solve = apps::solve_options(
-      h0 ? *h0 : *min_thickness, a, max_edge,
+      h0 ? *h0 : min_thickness.value_or(1.0), a, max_edge,
       sharp_angle.value_or(geometry::RemeshingOptions{}.sharp_angle_degrees),
       apps::SolverChoiceText{solver, tolerance, far_field}, memory_bytes(max_memory));
   if (measure)
-    job.measure = measure_from_name(*measure);
+    job.measure = analysis::thickness_measure(*measure);
   job.min_thickness = min_thickness;
+  job.max_thickness = max_thickness;
   job.map_to_input = false;  // mapped to the caller's own arrays below
   analysis::validate(job);
   const apps::ThicknessRunNames names{name, measure_name(job.measure), std::nullopt,
@@ -155,6 +137,7 @@ py::dict thickness(const py::handle& V, const py::handle& F, std::optional<doubl
   const py::object report = to_python(outcome->report);
   out["statistics"] = report["thickness"];
   out["regions"] = regions;
+  out["thick_regions"] = report["thick_regions"];
   out["passed"] = min_thickness ? py::object(py::bool_(result.regions.empty())) : py::none();
   out["solver_mesh"] = on_solver;
   out["report"] = report;
@@ -183,17 +166,22 @@ The local wall thickness of the solid bounded by the triangles F (int (m, 3), 0-
 the vertices V (float (n, 3)), as `bemshape thickness` computes it for a file. Lengths in
 the units of V.
 
-h0: characteristic length, about the smallest wall of interest (default: min_thickness).
+h0: characteristic length, about the smallest wall of interest (default: min_thickness, else
+    2·volume/area of the part).
 min_thickness: the check's threshold; every connected set of thinner faces is a region.
-measure: "principal" (h_p, across the wall; the default) or "paper" (h_f).
+max_thickness: every connected set of thicker faces is a thick region (report's
+    thick_regions).
+measure: "wall" (the default: the thickness of the wall a point belongs to, read at the
+    wall's mid-surface), "sphere"/"principal" (h_p at the point) or "paper" (h_f).
 a, max_edge, sharp_angle, solver, far_field, tolerance: as the command line's --a, ...
 threads: OpenMP threads for this call. max_memory: bytes the solve may use.
 progress: callable(stage, fraction), called from the solve (with the GIL held).
 
 Returns a dict:
-  vertex, face: {thickness, f_h, h_f, h_p: (n,) / (m,); n_f: (n, 3) / (m, 3)} on the
+  vertex, face: {thickness, f_h, h_f, h_p, wall: (n,) / (m,); n_f: (n, 3) / (m, 3)} on the
       caller's vertices and faces (views of memory the module owns, no copies);
-  measure: "h_p" or "h_f";  statistics: area-weighted min, max, mean, median, p05, p95, ...;
+  measure: "wall", "h_p" or "h_f";  thick_regions: as the report's (None without
+      max_thickness);  statistics: area-weighted min, max, mean, median, p05, p95, ...;
   regions: thin regions, most severe first (area, min, min_location, centroid,
       solver_faces);  passed: the check's verdict (None without min_thickness);
   solver_mesh: {V, F, vertex, face} the refined mesh the statistics come from;

@@ -7,12 +7,34 @@ nlohmann::json optional_text(const std::optional<std::string>& text) {
   return text ? nlohmann::json(*text) : nlohmann::json(nullptr);
 }
 
+nlohmann::json box_json(const Eigen::Vector3d& min, const Eigen::Vector3d& max) {
+  return {{"min", point_json(min)}, {"max", point_json(max)}};
+}
+
 nlohmann::json region_json(const analysis::ThinRegion& r) {
   return {{"area", r.area},
           {"min", r.minimum},
           {"min_location", point_json(r.min_location)},
           {"centroid", point_json(r.centroid)},
-          {"faces", r.faces}};
+          {"box", box_json(r.box_min, r.box_max)},
+          {"faces", r.faces},
+          {"solver_faces", r.face_indices}};
+}
+
+nlohmann::json region_json(const analysis::ThickRegion& r) {
+  return {{"area", r.area},
+          {"max", r.maximum},
+          {"max_location", point_json(r.max_location)},
+          {"skeleton_point", r.skeleton_point.allFinite() ? point_json(r.skeleton_point)
+                                                          : nlohmann::json(nullptr)},
+          {"centroid", point_json(r.centroid)},
+          {"box", box_json(r.box_min, r.box_max)},
+          {"faces", r.faces},
+          {"solver_faces", r.face_indices}};
+}
+
+const char* edges_name(analysis::EdgeMode edges) {
+  return edges == analysis::EdgeMode::exact ? "exact" : "wall";
 }
 
 }  // namespace
@@ -23,10 +45,14 @@ nlohmann::json thickness_report_json(const analysis::ThicknessOptions& options,
                                      const analysis::StageTimes& times, const RunFigures& run) {
   const analysis::BoundarySolve& solve = result.boundary;
   const analysis::ThicknessStatistics& s = result.statistics;
-  nlohmann::json parameters = {{"h0", options.solve.h0},
+  nlohmann::json parameters = {{"h0", result.h0},
+                               {"h0_rule", result.h0_rule},
                                {"a", options.solve.a},
                                {"kappa", solve.solution.parameters.kappa},
                                {"measure", names.measure},
+                               {"edges", edges_name(options.edges)},
+                               {"max_thickness", nullptr},
+                               {"min_region_area", result.min_region_area},
                                {"max_edge", solve.max_edge},
                                {"max_edge_rule", solve.max_edge_rule},
                                {"min_thickness", nullptr},
@@ -42,6 +68,18 @@ nlohmann::json thickness_report_json(const analysis::ThicknessOptions& options,
              {"pass", result.regions.empty()},
              {"regions", regions}};
   }
+  nlohmann::json thick = nullptr;
+  if (options.max_thickness) {
+    parameters["max_thickness"] = *options.max_thickness;
+    nlohmann::json regions = nlohmann::json::array();
+    for (const analysis::ThickRegion& r : result.thick_regions)
+      regions.push_back(region_json(r));
+    thick = {{"threshold", *options.max_thickness}, {"regions", regions}};
+  }
+  nlohmann::json wall_search = nullptr;
+  if (result.column == analysis::kColumnWall)
+    wall_search = {{"evaluations", result.wall.evaluations},
+                   {"faces_without_mid_surface", result.wall.filled_faces}};
   nlohmann::json report = report_header("thickness", names.input);
   report["output"] = optional_text(names.output);
   report["solver_output"] = optional_text(names.solver_output);
@@ -57,8 +95,14 @@ nlohmann::json thickness_report_json(const analysis::ThicknessOptions& options,
                          {"min_location", point_json(s.min_location)},
                          {"measured_area", s.measured_area},
                          {"unmeasurable_area", s.unmeasurable_area},
-                         {"clamped_faces", result.clamped_faces}};
+                         {"clamped_faces", result.clamped_faces},
+                         {"mid_surface_search", wall_search},
+                         {"histogram",
+                          {{"edges", result.histogram.edges},
+                           {"area", result.histogram.area},
+                           {"unmeasurable_area", result.histogram.other_area}}}};
   report["check"] = check;
+  report["thick_regions"] = thick;
   report["solver"] = solver_json(solve);
   report["timing"] = timing_json(times);
   report["memory"] = memory_json(run);

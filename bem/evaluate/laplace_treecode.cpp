@@ -219,6 +219,18 @@ LaplaceTreecode::Workspace LaplaceTreecode::workspace() const {
 
 LaplaceTreecode::Value LaplaceTreecode::evaluate(const Eigen::Vector3d& x, Workspace& workspace,
                                                  TreecodeCounts& counts) const {
+  return sum<true>(x, workspace, counts);
+}
+
+LaplaceTreecode::Value LaplaceTreecode::evaluate_values(const Eigen::Vector3d& x,
+                                                        Workspace& workspace,
+                                                        TreecodeCounts& counts) const {
+  return sum<false>(x, workspace, counts);
+}
+
+template <bool kGradient>
+LaplaceTreecode::Value LaplaceTreecode::sum(const Eigen::Vector3d& x, Workspace& workspace,
+                                            TreecodeCounts& counts) const {
   const LaplaceKernel laplace{};
   const int p = parameters_.order;
   const double theta2 = parameters_.theta * parameters_.theta;
@@ -248,8 +260,16 @@ LaplaceTreecode::Value LaplaceTreecode::evaluate(const Eigen::Vector3d& x, Works
         order = 0;
       }
       const int used = MultiIndexTable::count(order);
-      inverse_distance_taylor(table_, R, order + 1, b);
+      inverse_distance_taylor(table_, R, kGradient ? order + 1 : order, b);
       const double* mom = &moments_[c * size_t(coefficients_) * kSets];
+      if constexpr (!kGradient) {
+        for (int k = 0; k < used; ++k) {
+          const double* mk = mom + size_t(k) * kSets;
+          for (int s = 0; s < kSets; ++s) pot[s] += mk[s] * b[k];
+        }
+        ++counts.expansions;
+        continue;
+      }
       for (int k = 0; k < used; ++k) {
         const double* mk = mom + size_t(k) * kSets;
         const Raise& up = raise_[size_t(k)];
@@ -268,11 +288,12 @@ LaplaceTreecode::Value LaplaceTreecode::evaluate(const Eigen::Vector3d& x, Works
     } else if (cl.is_leaf()) {
       for (Eigen::Index t = cl.begin; t < cl.end; ++t) {
         const PanelIntegrals l =
-            integrate_panel(laplace, (*panels_)[size_t(perm[size_t(t)])], x, true);
+            integrate_panel(laplace, (*panels_)[size_t(perm[size_t(t)])], x, kGradient);
         v.winding -= l.double_layer;
         const Eigen::RowVector3d q = q_.row(t), phi = phi_.row(t);
         v.s += l.single_layer * q - l.double_layer * phi;
-        v.gradient += q.transpose() * l.single_layer_gradient.transpose() -
+        if constexpr (kGradient)
+          v.gradient += q.transpose() * l.single_layer_gradient.transpose() -
                       phi.transpose() * l.double_layer_gradient.transpose();
       }
       counts.panel_integrals += std::uint64_t(cl.size());

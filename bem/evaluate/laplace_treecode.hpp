@@ -95,12 +95,19 @@ class LaplaceTreecode {
 
   /// s, ∇s and w at x; adds the work done to `counts`.
   Value evaluate(const Eigen::Vector3d& x, Workspace& workspace, TreecodeCounts& counts) const;
+  /// s and w at x only (Value::gradient stays zero): the Taylor terms of one order less and
+  /// no gradient integrals, about half the work of evaluate().
+  Value evaluate_values(const Eigen::Vector3d& x, Workspace& workspace,
+                        TreecodeCounts& counts) const;
 
   const LaplaceTreecodeParameters& parameters() const { return parameters_; }
   /// Memory held by the moments [bytes].
   std::uint64_t moment_bytes() const { return moments_.size() * sizeof(double); }
 
  private:
+  template <bool kGradient>
+  Value sum(const Eigen::Vector3d& x, Workspace& workspace, TreecodeCounts& counts) const;
+
   /// Values per multi-index: s_1, s_2, s_3 and the winding number.
   static constexpr int kSets = 4;
 

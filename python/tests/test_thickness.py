@@ -22,7 +22,7 @@ def ball():
     """The geodesic ball of 1280 faces (edge ≈ 0.09 = the default rule 1.5·a·h0) and its
     thickness at h0 = 0.3."""
     V, F = icosphere(RADIUS, 3)
-    return V, F, bemshape.thickness(V, F, h0=H0)
+    return V, F, bemshape.thickness(V, F, h0=H0, measure="principal")
 
 
 def test_ball_thickness_within_2_percent_of_the_closed_form_on_vertices_and_faces(ball):
@@ -105,8 +105,6 @@ def test_same_triangles_from_python_and_the_command_line_give_the_same_thickness
 
 def test_errors_map_to_the_python_exceptions_users_expect():
     V, F = icosphere(RADIUS, 2)
-    with pytest.raises(ValueError, match="h0 is required"):
-        bemshape.thickness(V, F)
     with pytest.raises(ValueError, match="measure must be"):
         bemshape.thickness(V, F, h0=H0, measure="median")
     with pytest.raises(ValueError, match="solver"):
@@ -122,9 +120,25 @@ def test_errors_map_to_the_python_exceptions_users_expect():
     assert isinstance(refused.value, bemshape.ResourceError)
 
 
-def test_options_missing_from_this_build_are_refused_by_name_not_ignored():
-    V, F = icosphere(RADIUS, 1)
-    with pytest.raises(NotImplementedError, match="max_thickness"):
-        bemshape.thickness(V, F, h0=H0, max_thickness=2.0)
-    with pytest.raises(NotImplementedError, match="wall"):
-        bemshape.thickness(V, F, h0=H0, measure="wall")
+def test_wall_measure_is_the_default_and_reads_the_diameter_with_thick_regions():
+    V, F = icosphere(RADIUS, 2)
+    result = bemshape.thickness(V, F, h0=H0, max_edge=0.15, max_thickness=0.5 * RADIUS)
+    assert result["measure"] == "wall"
+    assert result["report"]["parameters"]["measure"] == "wall"
+    assert np.array_equal(result["face"]["thickness"], result["face"]["wall"])
+    # The wall of a ball is its diameter: h_p at the centre, the offset a·h0 removed.
+    assert max_relative_deviation(result["solver_mesh"]["face"]["wall"], 2 * RADIUS) < 0.02
+    regions = result["thick_regions"]["regions"]
+    assert len(regions) == 1  # the whole ball is thicker than its radius
+    assert regions[0]["max"] == pytest.approx(2 * RADIUS, rel=0.02)
+
+
+def test_h0_defaults_to_twice_volume_over_area():
+    V, F = icosphere(RADIUS, 2)
+    result = bemshape.thickness(V, F, max_edge=0.15)
+    report = result["report"]
+    assert report["parameters"]["h0_rule"] == "2*volume/area of the part"
+    # 2·V/A of a ball is 2R/3 (to the polyhedron's own volume and area).
+    assert report["parameters"]["h0"] == pytest.approx(
+        2 * report["mesh"]["volume"] / report["mesh"]["area"], rel=1e-12)
+    assert report["parameters"]["h0"] == pytest.approx(2 * RADIUS / 3, rel=0.02)

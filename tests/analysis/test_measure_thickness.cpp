@@ -55,6 +55,7 @@ TEST_CASE(
   analysis::ThicknessOptions options;
   options.solve.h0 = kParameters.h0;
   options.solve.a = kParameters.a;
+  options.measure = analysis::ThicknessMeasure::principal;
   const analysis::ThicknessResult from_file = analysis::measure_thickness(file.path, options);
   CAPTURE(h_p, h_f, from_file.statistics.minimum, from_file.statistics.maximum);
   CHECK(from_file.boundary.solution.report.method == "dense-lu");

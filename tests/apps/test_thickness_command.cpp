@@ -204,15 +204,19 @@ TEST_CASE("plate 2 × 2 × 0.3: thickness in the middle within 2 % of 0.3 (CSV a
   CHECK(middle > 50);
   nlohmann::json report = read_json(json);
   CHECK(report["parameters"]["max_edge_rule"] == "--max-edge");
-  // Within half the thickness of a rim no sphere of diameter 0.3 fits, so the surface reads
-  // thinner there (a band of ≈ 46 % of the area): the whole-surface median says little, but
-  // the upper quantiles are the flat middle.
-  CHECK(report["thickness"]["p95"].get<double>() == Approx(0.3).epsilon(0.02));
+  // The wall measure (the default) reads the plate's 0.3 up to its rims and corners.
+  CHECK(report["thickness"]["measure"] == "wall");
+  CHECK(report["thickness"]["min"].get<double>() == Approx(0.3).epsilon(0.02));
   CHECK(report["thickness"]["max"].get<double>() == Approx(0.3).epsilon(0.02));
-  // And the middle (|x|, |y| < 0.5 on both faces, area 2) is in no region thinner than
-  // 0.98·0.3.
+  const Run wall_check = run_bemshape("thickness '" + mesh +
+                                      "' --h0 0.3 --max-edge 0.15 --min-thickness 0.294 --quiet");
+  CHECK(wall_check.exit_code == 0);
+  // The sphere at the surface: within half the thickness of a rim no sphere of diameter 0.3
+  // fits, so the surface reads thinner there (a band of ≈ 46 % of the area), while the middle
+  // (|x|, |y| < 0.5 on both faces, area 2) is in no region thinner than 0.98·0.3.
   const Run check = run_bemshape("thickness '" + mesh +
-                                 "' --h0 0.3 --max-edge 0.15 --min-thickness 0.294 --report '" +
+                                 "' --h0 0.3 --max-edge 0.15 --measure sphere "
+                                 "--min-thickness 0.294 --min-region-area 0 --report '" +
                                  json + "' --quiet");
   CHECK(check.exit_code == 1);
   report = read_json(json);
@@ -384,15 +388,18 @@ TEST_CASE(
 }
 
 TEST_CASE("thickness clamped to 0: warned and counted exactly when the minimum is 0") {
-  // The cylinder of diameter 2 at --h0 4: the default element size 1.2 is coarse for its
-  // curvature, and a few side faces get an inverse thickness above 1/a. At --max-edge 0.6 none
-  // do. The count must be the solver faces the report's minimum comes from, so the warning
-  // and clamped_faces appear exactly when the minimum is 0.
+  // The cylinder of diameter 2 at --h0 4, read by the sphere at the surface: the default
+  // element size 1.2 is coarse for its curvature, and a few side faces get an inverse
+  // thickness above 1/a. At --max-edge 0.6 none do. The count must be the solver faces the
+  // report's minimum comes from, so the warning and clamped_faces appear exactly when the
+  // minimum is 0. (The wall measure reads 1.97 there: it reads h_p at the axis, not at the
+  // coarse surface.)
   const std::string cylinder = data + "/meshes/cylinder.stl";
   const auto run = [&](const std::string& options, const std::string& tag) {
     const std::string json = scratch(tag + ".json");
     const Run r =
-        run_bemshape("thickness '" + cylinder + "' --h0 4" + options + " --report '" + json + "'");
+        run_bemshape("thickness '" + cylinder + "' --h0 4 --measure sphere" + options +
+                     " --report '" + json + "'");
     CAPTURE(r.out, r.err);
     REQUIRE(r.exit_code == 0);
     return std::pair{r.out, read_json(json)};

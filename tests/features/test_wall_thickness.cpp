@@ -62,7 +62,7 @@ TEST_CASE("wall thickness: the mid-surface reading inside a wall, twice the dept
   const double nan = std::numeric_limits<double>::quiet_NaN();
   using features::wall_thickness;
   CHECK(wall_thickness(4.0, nan, 2.0) == 4.0);                         // no mid-surface depth
-  CHECK(wall_thickness(4.0, 40.0, 1.0) == 4.0);                        // searched along the wall
+  CHECK(std::isnan(wall_thickness(4.0, 40.0, 1.0)));                   // searched along the wall
   CHECK(wall_thickness(4.3, 4.0, 0.05) == 4.3);                        // within a wall
   CHECK(wall_thickness(5.2, 4.0, features::kRimFull) == 4.0);          // at a rim
   CHECK(wall_thickness(5.2, 4.0, 2 * features::kRimFull) == 4.0);

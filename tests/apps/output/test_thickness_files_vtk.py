@@ -25,7 +25,7 @@ from vtkmodules.util.numpy_support import vtk_to_numpy
 
 H0 = 0.5
 A = 0.2  # the default of --a
-FIELDS = ["thickness", "h_f", "h_p", "f_h", "n_f"]
+FIELDS = ["thickness", "h_f", "h_p", "f_h", "n_f", "wall"]
 
 
 def environment_path(name):
@@ -54,7 +54,7 @@ def runs(tmp_path_factory):
 def read_csv(path):
     with open(path, newline="") as f:
         rows = list(csv.reader(f))
-    assert rows[0] == ["x", "y", "z", "thickness", "h_f", "h_p", "n_x", "n_y", "n_z"]
+    assert rows[0] == ["x", "y", "z", "thickness", "h_f", "h_p", "n_x", "n_y", "n_z", "wall"]
     values = np.array(rows[1:], dtype=np.float64)  # Python's float() is correctly rounded
     return {name: values[:, k] for k, name in enumerate(rows[0])}
 
@@ -82,7 +82,7 @@ def test_vtp_holds_the_csv_values_exactly(runs, which):
     assert len(points) == len(table["x"])
     np.testing.assert_array_equal(points, np.column_stack([table["x"], table["y"], table["z"]]))
     point_data, cell_data = surface.GetPointData(), surface.GetCellData()
-    for name in ("thickness", "h_f", "h_p"):
+    for name in ("thickness", "h_f", "h_p", "wall"):
         np.testing.assert_array_equal(vtk_to_numpy(point_data.GetArray(name)), table[name],
                                       err_msg=name)
     np.testing.assert_array_equal(vtk_to_numpy(point_data.GetArray("n_f")),
@@ -90,8 +90,10 @@ def test_vtp_holds_the_csv_values_exactly(runs, which):
     # f_h has no CSV column: h_f = h0(1/f_h − a) holds to rounding.
     f_h = vtk_to_numpy(point_data.GetArray("f_h"))
     np.testing.assert_allclose(H0 * (1.0 / f_h - A), table["h_f"], rtol=1e-13)
-    # The default measure is principal: the thickness is h_p.
-    np.testing.assert_array_equal(table["thickness"], table["h_p"])
+    # The default measure is the wall: the thickness is the wall column, the sphere's
+    # diameter 2 within 2 % at every vertex (docs/theory.md section 5).
+    np.testing.assert_array_equal(table["thickness"], table["wall"])
+    np.testing.assert_allclose(table["wall"], 2.0, rtol=0.02)
 
     faces = polydata_faces(surface)
     assert surface.GetNumberOfCells() == len(faces) == 1280

@@ -1,0 +1,67 @@
+#pragma once
+// The wall thickness on the surface of the solid: for every solver face, the thickness of
+// the wall the face belongs to, read at the wall's mid-surface (docs/theory.md, "Wall
+// thickness"; the formulas are features/wall_thickness.hpp).
+//
+// The search, per face f with centroid x and outward normal n, on g(τ) = s(x − τn)·n:
+//   - g(0) from the reconstructed vertex values of s (bem/evaluate/surface_gradient.hpp) and
+//     the first step τ1 = g(0)/(q·n), the depth of the middle of a flat wall;
+//   - τ grows by kDepthGrowth until g changes sign, the point leaves the solid (winding
+//     number below ½) or τ passes the diagonal of the part's bounding box;
+//   - the bracket shrinks by the Illinois variant of regula falsi until it is narrower than
+//     kDepthTolerance·τ; its end nearer the zero is the mid-surface point p0 = x − τ0·n;
+//   - s and ∇s at p0 (bem/evaluate/laplace_treecode.hpp, the interior representation
+//     formula) give h_mid, and the rim indicator |s(p0)| / |g(0)|.
+// Faces whose search leaves the solid or finds no sign change (a few at corners where three
+// walls meet), and faces whose search ran along their wall instead of across it (the rim
+// faces of a plate, the wall of a hole, the end of a rib or a tube:
+// features::wall_thickness gives NaN) take the area-weighted mean of their edge neighbours'
+// values, sweep by sweep until every face has one: a rim reads the wall it bounds. Their
+// number is reported.
+//
+//   thickness:       #F wall thickness per solver face [model units]
+//   mid_point:       #F×3 p0 [model units]; NaN rows where none was found
+//   depth:           #F τ0 [model units]; NaN where none was found
+//   mid_thickness:   #F h_mid [model units]; NaN where none was found
+//   rim_indicator:   #F [1]; NaN where none was found
+
+#include <cstdint>
+
+#include <Eigen/Core>
+
+#include "bem/solve/boundary_solution.hpp"
+#include "core/progress.hpp"
+#include "features/feature_parameters.hpp"
+#include "geometry/surface_mesh.hpp"
+
+namespace bemshape::analysis {
+
+/// The search's relative resolution of τ0: 10⁻³ of the depth moves the twice-depth reading
+/// by 0.1 % and h_mid (a smooth function of the position across the wall) by less.
+inline constexpr double kDepthTolerance = 1e-3;
+/// Growth of τ between steps while no sign change is found.
+inline constexpr double kDepthGrowth = 1.6;
+
+struct WallThickness {
+  Eigen::VectorXd thickness;
+  Eigen::MatrixX3d mid_point;
+  Eigen::VectorXd depth;
+  Eigen::VectorXd mid_thickness;
+  Eigen::VectorXd rim_indicator;
+  /// Faces given their neighbours' thickness (no mid-surface point, or searched along the wall).
+  Eigen::Index filled_faces = 0;
+  /// Points where s was evaluated (the search's cost).
+  std::uint64_t evaluations = 0;
+};
+
+/// The wall thickness of every face of `solver_mesh` from its boundary solution. Parallel over
+/// faces; polls cancellation; reports progress as "wall thickness".
+WallThickness wall_thickness(const geometry::SurfaceMesh& solver_mesh,
+                             const bem::BoundarySolution& solution,
+                             const features::FeatureParameters& parameters,
+                             const ProgressCallback& progress = {});
+
+/// Per-vertex values of a per-face field: the area-weighted mean over each vertex's faces.
+Eigen::VectorXd vertex_mean(const geometry::SurfaceMesh& mesh, const Eigen::VectorXd& face_values);
+
+}  // namespace bemshape::analysis

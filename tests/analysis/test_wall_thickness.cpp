@@ -1,0 +1,145 @@
+// The wall thickness on the surface (analysis/wall_thickness.hpp, docs/theory.md section 5)
+// on solids whose walls are known: a ball (the diameter, the curvature offset removed), a
+// square plate (its thickness on every face, rims and corners included, where the sphere
+// reading grows), a plate with a boss (the boss is the thick region and is located), and
+// h0 from the part (2·V/A).
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include "analysis/input_mesh.hpp"
+#include "analysis/measure_thickness.hpp"
+#include "analysis/wall_thickness.hpp"
+#include "geometry/constructive_solids.hpp"
+#include "geometry/primitive_meshes.hpp"
+
+using namespace bemshape;
+
+namespace {
+
+geometry::PreparedMesh prepared(const geometry::SurfaceMesh& mesh) {
+  return analysis::prepare_triangles(mesh.vertices(), mesh.faces(), "test solid");
+}
+
+/// The plate [0, 12] × [0, 12] × [0, 2]: a 2 mm wall with rims on four sides.
+constexpr double kPlateThickness = 2.0;
+geometry::SurfaceMesh square_plate() {
+  return geometry::make_box_solid(Eigen::Vector3d(0, 0, 0),
+                                  Eigen::Vector3d(12, 12, kPlateThickness));
+}
+
+analysis::ThicknessOptions plate_options(analysis::ThicknessMeasure measure) {
+  analysis::ThicknessOptions options;
+  options.solve.h0 = kPlateThickness;
+  options.solve.max_edge = 0.8;
+  options.measure = measure;
+  options.map_to_input = false;
+  return options;
+}
+
+}  // namespace
+
+TEST_CASE("wall thickness: a ball reads its diameter on every face, the offset a·h0 removed") {
+  const double radius = 0.5, h0 = 0.3, a = 0.2;
+  const geometry::SurfaceMesh ball = geometry::make_geodesic_sphere(
+      radius, geometry::geodesic_frequency_for_edge(radius, 0.09));
+  analysis::ThicknessOptions options;
+  options.solve.h0 = h0;
+  options.solve.a = a;
+  options.map_to_input = false;
+  const analysis::ThicknessResult result = analysis::measure_thickness(prepared(ball), options);
+  REQUIRE(result.measure_column == "wall");
+  const Eigen::ArrayXd error = (result.thickness.array() / (2.0 * radius) - 1.0).abs();
+  CAPTURE(result.statistics.minimum, result.statistics.maximum, result.wall.filled_faces);
+  CHECK(error.maxCoeff() < 0.02);
+  // Every search found the centre: no face needed its neighbours.
+  CHECK(result.wall.filled_faces == 0);
+  CHECK((result.wall.depth.array() / radius - 1.0).abs().maxCoeff() < 0.02);
+  // The sphere reading carries the diffusion offset: D + a·h0 (docs/theory.md section 3).
+  options.measure = analysis::ThicknessMeasure::principal;
+  const analysis::ThicknessResult sphere = analysis::measure_thickness(prepared(ball), options);
+  CHECK(sphere.statistics.median > 2.0 * radius + 0.5 * a * h0);
+}
+
+TEST_CASE("wall thickness: a square plate reads its thickness up to its rims and corners") {
+  const geometry::PreparedMesh plate = prepared(square_plate());
+  const analysis::ThicknessResult wall =
+      analysis::measure_thickness(plate, plate_options(analysis::ThicknessMeasure::wall));
+  const Eigen::ArrayXd error = (wall.thickness.array() / kPlateThickness - 1.0).abs();
+  CAPTURE(wall.statistics.minimum, wall.statistics.maximum, wall.wall.filled_faces);
+  CHECK(error.maxCoeff() < 0.03);
+  CHECK(std::abs(wall.statistics.median / kPlateThickness - 1.0) < 0.005);
+  // The rim faces (normal in the plate's plane) searched along the plate and took their
+  // neighbours' value; the broad faces found the mid-plane at half the thickness.
+  const geometry::SurfaceMesh& mesh = wall.boundary.solver_mesh;
+  Eigen::Index rim_faces = 0;
+  for (Eigen::Index f = 0; f < mesh.num_faces(); ++f) {
+    if (std::abs(mesh.face_normals()(f, 2)) < 0.5) {
+      ++rim_faces;
+    } else if (wall.wall.rim_indicator(f) < 0.1) {
+      CHECK(wall.wall.depth(f) == Approx(0.5 * kPlateThickness).epsilon(0.01));
+    }
+  }
+  CHECK(wall.wall.filled_faces >= rim_faces);
+
+  // The sphere at the surface reads thinner within half a wall of a rim (no sphere of the
+  // wall's diameter fits there); the exact edges are never thicker than the wall.
+  const analysis::ThicknessResult sphere =
+      analysis::measure_thickness(plate, plate_options(analysis::ThicknessMeasure::principal));
+  CHECK(sphere.statistics.minimum < 0.9 * kPlateThickness);
+  analysis::ThicknessOptions exact = plate_options(analysis::ThicknessMeasure::wall);
+  exact.edges = analysis::EdgeMode::exact;
+  const analysis::ThicknessResult edges = analysis::measure_thickness(plate, exact);
+  CHECK((edges.thickness.array() <= wall.thickness.array()).all());
+
+  // A check at 1.1·t flags the whole plate as one region; at 0.9·t nothing.
+  analysis::ThicknessOptions check = plate_options(analysis::ThicknessMeasure::wall);
+  check.min_thickness = 1.1 * kPlateThickness;
+  const analysis::ThicknessResult thin = analysis::measure_thickness(plate, check);
+  REQUIRE(thin.regions.size() == 1);
+  CHECK(thin.regions.front().area == Approx(plate.report.area).epsilon(1e-9));
+  check.min_thickness = 0.9 * kPlateThickness;
+  CHECK(analysis::measure_thickness(plate, check).regions.empty());
+}
+
+TEST_CASE("wall thickness: the boss on a plate is the one thick region, located at the boss") {
+  // A 2 mm plate 24 × 24 with a square boss 6 × 6, 4 mm high, on top (solid: thicker than
+  // the plate everywhere).
+  const geometry::SurfaceMesh plate =
+      geometry::make_box_solid(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(24, 24, 2));
+  const geometry::SurfaceMesh boss =
+      geometry::make_box_solid(Eigen::Vector3d(9, 9, 1), Eigen::Vector3d(15, 15, 6));
+  const geometry::PreparedMesh part = prepared(geometry::mesh_union(plate, boss));
+  analysis::ThicknessOptions options;
+  options.solve.h0 = 2.0;
+  options.solve.max_edge = 1.0;
+  options.max_thickness = 3.0;
+  options.map_to_input = false;
+  const analysis::ThicknessResult result = analysis::measure_thickness(part, options);
+  CAPTURE(result.thick_regions.size(), result.statistics.median);
+  REQUIRE(!result.thick_regions.empty());
+  const analysis::ThickRegion& thickest = result.thick_regions.front();
+  const auto in_boss = [](const Eigen::Vector3d& x) {
+    return (x.head<2>().array() >= 9.0 - 1e-9).all() && (x.head<2>().array() <= 15.0 + 1e-9).all();
+  };
+  CHECK(in_boss(thickest.max_location));
+  CHECK(thickest.maximum > 3.0);
+  // The wall's middle under the thickest face lies inside the boss.
+  REQUIRE(thickest.skeleton_point.allFinite());
+  CHECK(in_boss(thickest.skeleton_point));
+  // The plate away from the boss still reads its 2 mm.
+  CHECK(std::abs(result.statistics.median / 2.0 - 1.0) < 0.01);
+}
+
+TEST_CASE("wall thickness: h0 from the part is 2·volume/area") {
+  const geometry::PreparedMesh plate = prepared(square_plate());
+  // V = 12·12·2 = 288, A = 2·144 + 4·24 = 384.
+  CHECK(analysis::part_h0(plate.report) == Approx(2.0 * 288.0 / 384.0).epsilon(1e-12));
+  analysis::ThicknessOptions options = plate_options(analysis::ThicknessMeasure::wall);
+  options.h0_from_part = true;
+  options.solve.h0 = 0.0;  // ignored
+  const analysis::ThicknessResult result = analysis::measure_thickness(plate, options);
+  CHECK(result.h0 == Approx(1.5).epsilon(1e-12));
+  CHECK(result.h0_rule == "2*volume/area of the part");
+  CHECK(std::abs(result.statistics.median / kPlateThickness - 1.0) < 0.01);
+}
