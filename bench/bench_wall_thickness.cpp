@@ -124,13 +124,30 @@ void run_part(const std::string& name, const Options& options) {
   for (std::size_t k = 0; k < part.features.size(); ++k) {
     const geometry::PartFeature& feature = part.features[k];
     if (feature.role == geometry::WallRole::thin_feature) {
-      int located = 0;
-      for (const analysis::ThinRegion& r : result.regions)
-        located += inside(feature.box, r.min_location, 1e-6 * t) ? 1 : 0;
-      std::printf("    thin feature %-24s %g: flagged %.1f %% of its area, regions with their "
-                  "minimum inside it: %d\n",
+      // The region holding most of the feature's area: its share of the feature, where its
+      // minimum and centroid are.
+      const analysis::ThinRegion* best = nullptr;
+      double best_area = 0.0;
+      for (const analysis::ThinRegion& r : result.regions) {
+        double area = 0.0;
+        for (const int f : r.face_indices)
+          if (labels[std::size_t(f)].role == geometry::WallRole::thin_feature &&
+              labels[std::size_t(f)].feature == int(k))
+            area += mesh.face_areas()(f);
+        if (area > best_area) {
+          best_area = area;
+          best = &r;
+        }
+      }
+      std::printf("    thin feature %-24s %g: flagged %.1f %% of its area, %.1f %% in one region "
+                  "(of %zu), its minimum %.3f %s the feature, its centroid %s\n",
                   feature.name.c_str(), feature.thickness,
-                  100.0 * feature_flagged[k] / std::max(feature_area[k], 1e-300), located);
+                  100.0 * feature_flagged[k] / std::max(feature_area[k], 1e-300),
+                  100.0 * best_area / std::max(feature_area[k], 1e-300), result.regions.size(),
+                  best ? best->minimum : std::nan(""),
+                  best && inside(feature.box, best->min_location, 1e-6 * t) ? "inside"
+                                                                            : "NOT inside",
+                  best && inside(feature.box, best->centroid, 1e-6 * t) ? "inside" : "NOT inside");
     } else {
       const bool found = !result.thick_regions.empty() &&
                          inside(feature.box, result.thick_regions.front().max_location, 1e-6 * t);
