@@ -121,8 +121,8 @@ def test_errors_map_to_the_python_exceptions_users_expect():
 
 
 def test_wall_measure_is_the_default_and_reads_the_diameter_with_thick_regions():
-    V, F = icosphere(RADIUS, 2)
-    result = bemshape.thickness(V, F, h0=H0, max_edge=0.15, max_thickness=0.5 * RADIUS)
+    V, F = icosphere(RADIUS, 3)
+    result = bemshape.thickness(V, F, h0=H0, max_thickness=0.5 * RADIUS)
     assert result["measure"] == "wall"
     assert result["report"]["parameters"]["measure"] == "wall"
     assert np.array_equal(result["face"]["thickness"], result["face"]["wall"])
