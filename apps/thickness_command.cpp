@@ -276,6 +276,9 @@ void run_thickness(const ThicknessOptions& options, int& exit_code) {
   // h0: --h0, else --min-thickness, else the part's 2·volume/area (analysis::part_h0).
   const bool h0_from_part = !options.h0 && !options.min_thickness;
   const double h0_given = options.h0 ? *options.h0 : options.min_thickness.value_or(1.0);
+  if (options.h0 && !(std::isfinite(*options.h0) && *options.h0 > 0.0))
+    throw InputError("--h0 must be a positive length (the smallest wall thickness of interest), "
+                     "got " + number_text(*options.h0, 6));
   if (options.min_thickness &&
       !(std::isfinite(*options.min_thickness) && *options.min_thickness > 0.0))
     throw InputError("--min-thickness must be a positive length, got " +

@@ -45,16 +45,18 @@ TEST_CASE("ball: surface h_p and h_f within 2 % of the closed form, n_f along th
   const double h_f = paper_thickness(kParameters, inverse_thickness(kParameters, 3.0 * ball.A));
   const std::string mesh = ball_file(0.09, "ball.stl");
   const std::string csv = scratch("ball.csv"), json = scratch("ball.json");
-  const Run r = run_bemshape("thickness '" + mesh + "' --h0 0.3 -o '" + csv + "' --report '" +
-                             json + "' --quiet");
+  // --measure sphere: the surface value h_p under its explicit name (the default, wall, is
+  // checked at the end of this test).
+  const Run r = run_bemshape("thickness '" + mesh + "' --h0 0.3 --measure sphere -o '" + csv +
+                             "' --report '" + json + "' --quiet");
   CAPTURE(r.out, r.err, h_p, h_f);
   REQUIRE(r.exit_code == 0);
   CHECK(r.err.empty());  // --quiet
 
   const CsvTable table = parse_csv(slurp(csv));
-  CHECK(table.header_line() == "x,y,z,thickness,h_f,h_p,n_x,n_y,n_z");
+  CHECK(table.header_line() == "x,y,z,thickness,h_f,h_p,n_x,n_y,n_z");  // no wall search
   CHECK(table.rows.rows() == 642);                    // one row per vertex of the input
-  CHECK(table.col("thickness") == table.col("h_p"));  // --measure principal is the default
+  CHECK(table.col("thickness") == table.col("h_p"));  // --measure sphere
   CHECK(max_relative_deviation(table.col("h_p"), h_p) < 0.02);
   CHECK(max_relative_deviation(table.col("h_f"), h_f) < 0.02);
   for (Eigen::Index v = 0; v < table.rows.rows(); ++v) {
@@ -66,7 +68,8 @@ TEST_CASE("ball: surface h_p and h_f within 2 % of the closed form, n_f along th
   const nlohmann::json report = read_json(json);
   CHECK(report["units"] == "lengths in the input file's units");
   CHECK(report["parameters"]["h0"] == 0.3);
-  CHECK(report["parameters"]["measure"] == "principal");
+  CHECK(report["parameters"]["measure"] == "sphere");
+  CHECK(report["thickness"]["measure"] == "h_p");
   CHECK(report["parameters"]["max_edge"].get<double>() == Approx(1.5 * 0.2 * 0.3));
   CHECK(report["parameters"]["max_edge_rule"].get<std::string>().starts_with("default"));
   CHECK(report["parameters"]["march"].is_string());  // the build's instruction set
@@ -87,6 +90,17 @@ TEST_CASE("ball: surface h_p and h_f within 2 % of the closed form, n_f along th
   CHECK(report["memory"]["peak_mb"].get<double>() > 0.0);
   for (const char* stage : {"read", "refine", "assemble", "solve", "features", "total"})
     CHECK(report["timing"][stage].get<double>() >= 0.0);
+
+  // The default, wall: a ball's wall is its diameter, read at every vertex (the mid-surface
+  // search reaches the centre from every point), with h_p beside it.
+  const std::string wall_csv = scratch("ball_wall.csv");
+  REQUIRE(run_bemshape("thickness '" + mesh + "' --h0 0.3 -o '" + wall_csv + "' --quiet")
+              .exit_code == 0);
+  const CsvTable wall = parse_csv(slurp(wall_csv));
+  CHECK(wall.header_line() == "x,y,z,thickness,h_f,h_p,n_x,n_y,n_z,wall");
+  CHECK(wall.col("thickness") == wall.col("wall"));
+  CHECK(wall.col("h_p") == table.col("h_p"));
+  CHECK(max_relative_deviation(wall.col("wall"), 2.0 * kBallRadius) < 0.01);
 }
 
 TEST_CASE("ball: --measure paper writes h_f as the thickness and VTP and PLY carry the CSV's values") {
@@ -140,8 +154,8 @@ TEST_CASE("shell R1 = 0.7, R2 = 1.0: h_p and h_f on both spheres within 3 % of t
   const std::string mesh =
       write_mesh(geometry::make_spherical_shell(r1, r2, 7, 10), "shell.stl");
   const std::string csv = scratch("shell.csv"), json = scratch("shell.json");
-  const Run r = run_bemshape("thickness '" + mesh + "' --h0 0.3 --max-edge 0.135 -o '" + csv +
-                             "' --report '" + json + "' --quiet");
+  const Run r = run_bemshape("thickness '" + mesh + "' --h0 0.3 --max-edge 0.135 --measure sphere -o '" +
+                             csv + "' --report '" + json + "' --quiet");
   CAPTURE(r.out, r.err, h_p_inner, h_p_outer, h_f);
   REQUIRE(r.exit_code == 0);
   const CsvTable table = parse_csv(slurp(csv));
@@ -499,10 +513,10 @@ TEST_CASE("solver hmatrix: the same thickness as --solver dense, GMRES reported 
 
 TEST_CASE("usage errors are one line on stderr, exit 2, before any work and no file is left") {
   const std::string mesh = ball_file(0.12, "usage_ball.stl");
-  Run r = run_bemshape("thickness '" + mesh + "'");
+  Run r = run_bemshape("thickness '" + mesh + "' --h0 0");
   CHECK(r.exit_code == 2);
-  CHECK_THAT(r.err, Catch::StartsWith("bemshape: error: --h0 is required"));
-  CHECK_THAT(r.err, Catch::Contains("smallest wall thickness of interest"));
+  CHECK_THAT(r.err, Catch::StartsWith("bemshape: error: --h0"));
+  CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
 
   r = run_bemshape("thickness '" + mesh + "' --h0 0.3 -o '" + scratch("out.xyz") + "'");
   CHECK(r.exit_code == 2);
