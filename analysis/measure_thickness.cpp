@@ -74,12 +74,14 @@ ThicknessResult measure(ThicknessResult result, const ThicknessOptions& given,
                                     unmeasurable_from);
   result.min_region_area = options.min_region_area.value_or(kSpeckArea * h0 * h0);
   if (options.min_thickness) {
-    result.regions = thin_regions(solver_mesh, result.thickness, *options.min_thickness);
+    result.regions =
+        thin_regions(solver_mesh, result.thickness, *options.min_thickness, result.wall.partner);
     drop_small(result.regions, result.min_region_area);
   }
   if (options.max_thickness) {
     result.thick_regions =
-        thick_regions(solver_mesh, result.thickness, *options.max_thickness, unmeasurable_from);
+        thick_regions(solver_mesh, result.thickness, *options.max_thickness, unmeasurable_from,
+                      result.wall.partner);
     drop_small(result.thick_regions, result.min_region_area);
     if (result.wall.mid_point.rows() == solver_mesh.num_faces())
       for (ThickRegion& r : result.thick_regions)

@@ -69,12 +69,14 @@ ThicknessStatistics thickness_statistics(const geometry::SurfaceMesh& mesh,
 
 namespace {
 
-/// The edge-connected sets of faces whose value is `selected`; `more_severe(t, e)` says
+/// The edge-connected sets of faces whose value is `selected`, joined also across the wall
+/// where `across` (#F or empty) names a selected face; `more_severe(t, e)` says
 /// whether value t is more severe than the region's extreme e so far (lower for thin, higher
 /// for thick), kept in the members `extreme` and `location`.
 template <class Region, class Selected, class MoreSevere>
 std::vector<Region> connected_regions(const geometry::SurfaceMesh& mesh,
-                                      const Eigen::VectorXd& thickness, Selected selected,
+                                      const Eigen::VectorXd& thickness,
+                                      const Eigen::VectorXi& across, Selected selected,
                                       MoreSevere more_severe, double Region::*extreme,
                                       Eigen::Vector3d Region::*location) {
   const Eigen::Index nf = mesh.num_faces();
@@ -100,6 +102,8 @@ std::vector<Region> connected_regions(const geometry::SurfaceMesh& mesh,
       if (!inserted)
         parent[static_cast<std::size_t>(root(f))] = root(it->second);
     }
+    if (across.size() == nf && across(f) >= 0 && selected(thickness(across(f))))
+      parent[static_cast<std::size_t>(root(f))] = root(across(f));
   }
   std::map<Eigen::Index, Region> by_root;
   for (Eigen::Index f = 0; f < nf; ++f) {
@@ -138,18 +142,20 @@ std::vector<Region> connected_regions(const geometry::SurfaceMesh& mesh,
 }  // namespace
 
 std::vector<ThinRegion> thin_regions(const geometry::SurfaceMesh& mesh,
-                                     const Eigen::VectorXd& thickness, double threshold) {
+                                     const Eigen::VectorXd& thickness, double threshold,
+                                     const Eigen::VectorXi& across) {
   return connected_regions<ThinRegion>(
-      mesh, thickness, [threshold](double t) { return t < threshold; },
+      mesh, thickness, across, [threshold](double t) { return t < threshold; },
       [](double t, double extreme) { return t < extreme; }, &ThinRegion::minimum,
       &ThinRegion::min_location);
 }
 
 std::vector<ThickRegion> thick_regions(const geometry::SurfaceMesh& mesh,
                                        const Eigen::VectorXd& thickness, double threshold,
-                                       double unmeasurable_from) {
+                                       double unmeasurable_from,
+                                       const Eigen::VectorXi& across) {
   return connected_regions<ThickRegion>(
-      mesh, thickness,
+      mesh, thickness, across,
       [threshold, unmeasurable_from](double t) { return t > threshold && t < unmeasurable_from; },
       [](double t, double extreme) { return t > extreme; }, &ThickRegion::maximum,
       &ThickRegion::max_location);

@@ -69,14 +69,21 @@ struct ThickRegion {
   Eigen::Vector3d skeleton_point = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
 };
 
-/// Every edge-connected set of faces with thickness < threshold, most severe first.
+/// Every edge-connected set of faces with thickness < threshold, most severe first. With
+/// `across` (#F: the face across the wall, −1 for none; analysis/wall_thickness.hpp), a face
+/// and the face across its wall join one region when both are selected: the two skins of a
+/// thin wall are one feature even where no thin face joins them by an edge (a pocket's
+/// ceiling and the floor above it).
 std::vector<ThinRegion> thin_regions(const geometry::SurfaceMesh& mesh,
-                                     const Eigen::VectorXd& thickness, double threshold);
+                                     const Eigen::VectorXd& thickness, double threshold,
+                                     const Eigen::VectorXi& across = {});
 
 /// Every edge-connected set of faces with unmeasurable_from > thickness > threshold, thickest
-/// first (faces at the saturation value, far from any opposite wall, are not thick walls).
+/// first (faces at the saturation value, far from any opposite wall, are not thick walls);
+/// `across` as for thin_regions.
 std::vector<ThickRegion> thick_regions(const geometry::SurfaceMesh& mesh,
                                        const Eigen::VectorXd& thickness, double threshold,
-                                       double unmeasurable_from);
+                                       double unmeasurable_from,
+                                       const Eigen::VectorXi& across = {});
 
 }  // namespace bemshape::analysis

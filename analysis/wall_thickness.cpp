@@ -1,11 +1,13 @@
 #include "analysis/wall_thickness.hpp"
 
+#include "analysis/mid_surface_pairs.hpp"
 #include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <limits>
 #include <vector>
 
+#include "analysis/mid_surface_pairs.hpp"
 #include "bem/evaluate/laplace_treecode.hpp"
 #include "bem/evaluate/surface_gradient.hpp"
 #include "bem/hmatrix/cluster_tree.hpp"
@@ -186,8 +188,6 @@ WallThickness wall_thickness(const geometry::SurfaceMesh& mesh,
         result.mid_point.row(f) = face.point.transpose();
         result.mid_thickness(f) = face.mid_thickness;
         result.rim_indicator(f) = face.rim_indicator;
-        result.thickness(f) =
-            features::wall_thickness(face.mid_thickness, 2.0 * face.depth, face.rim_indicator);
       }
       const Eigen::Index count = ++done;
       if (progress && count % 256 == 0) {
@@ -198,6 +198,23 @@ WallThickness wall_thickness(const geometry::SurfaceMesh& mesh,
   }
   throw_if_cancelled();
   result.evaluations = evaluations;
+  // The skins' separation where two of them share a mid-surface point: the rim reading,
+  // and the wall's reading at a junction.
+  FaceMask found(nf), across(nf);
+  for (Eigen::Index f = 0; f < nf; ++f) {
+    found(f) = std::isfinite(result.depth(f));
+    across(f) = std::isfinite(result.depth(f)) &&
+                !features::along_wall(result.mid_thickness(f), 2.0 * result.depth(f));
+  }
+  MidSurfacePairs pairs = mid_surface_pairs(mesh, result.mid_point, result.depth, found, across);
+  result.pair_thickness = std::move(pairs.thickness);
+  result.partner = std::move(pairs.partner);
+  result.paired_faces = (result.partner.array() >= 0).count();
+  for (Eigen::Index f = 0; f < nf; ++f)
+    if (std::isfinite(result.depth(f)))
+      result.thickness(f) =
+          features::wall_thickness(result.mid_thickness(f), 2.0 * result.depth(f),
+                                   result.rim_indicator(f), result.pair_thickness(f));
   result.filled_faces = (!result.thickness.array().isFinite()).count();
   fill_from_neighbours(mesh, result.thickness);
   // A shell where no face has a value of its own: h_mid where there is one, else not

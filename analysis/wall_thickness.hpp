@@ -11,7 +11,10 @@
 //   - the bracket shrinks by the Illinois variant of regula falsi until it is narrower than
 //     kDepthTolerance·τ; its end nearer the zero is the mid-surface point p0 = x − τ0·n;
 //   - s and ∇s at p0 (bem/evaluate/laplace_treecode.hpp, the interior representation
-//     formula) give h_mid, and the rim indicator |s(p0)| / |g(0)|.
+//     formula) give h_mid, and the rim indicator |s(p0)| / |g(0)|;
+//   - the face of the opposite skin whose mid-surface point is nearest p0 gives the skins'
+//     separation (analysis/mid_surface_pairs.hpp): the rim reading (else twice the depth),
+//     and the reading where h_mid is a junction's (features/wall_thickness.hpp).
 // Faces whose search leaves the solid or finds no sign change (a few at corners where three
 // walls meet), and faces whose search ran along their wall instead of across it (the rim
 // faces of a plate, the wall of a hole, the end of a rib or a tube:
@@ -24,6 +27,7 @@
 //   depth:           #F τ0 [model units]; NaN where none was found
 //   mid_thickness:   #F h_mid [model units]; NaN where none was found
 //   rim_indicator:   #F [1]; NaN where none was found
+//   pair_thickness:  #F [model units]; NaN where no pair was found
 
 #include <cstdint>
 
@@ -48,6 +52,12 @@ struct WallThickness {
   Eigen::VectorXd depth;
   Eigen::VectorXd mid_thickness;
   Eigen::VectorXd rim_indicator;
+  /// The separation of the two skins sharing the mid-surface point
+  /// (analysis/mid_surface_pairs.hpp); NaN where the opposite skin has no face there.
+  Eigen::VectorXd pair_thickness;
+  /// The face across the wall whose skin shares the mid-surface point; −1 where none.
+  Eigen::VectorXi partner;
+  Eigen::Index paired_faces = 0;
   /// Faces given their neighbours' thickness (no mid-surface point, or searched along the wall).
   Eigen::Index filled_faces = 0;
   /// Points where s was evaluated (the search's cost).

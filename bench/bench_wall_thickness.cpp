@@ -2,7 +2,9 @@
 // scored the way a designer judges a minimum-wall-thickness check: the table of
 // docs/validation.md, "Wall thickness on parts with known walls".
 //
-//   bench_wall_thickness [--measure wall|sphere|paper] [--max-edge E] [--threads N] [PART ...]
+//   bench_wall_thickness [--measure wall|sphere|paper] [--max-edge E] [--threads N]
+//                        [--dump PREFIX] [PART ...]
+// (--dump writes PREFIX<part>.csv: every solver face with its label and the search's readings.)
 //
 // Without parts: every labelled part but large-tray (its uniform default mesh has millions of
 // faces; bench_thickness_tools measures it on the graded mesh). Each part is given to analysis::measure_thickness as its
@@ -45,6 +47,7 @@ namespace {
 struct Options {
   std::string measure = "wall";
   double max_edge = 0.0;  // 0: the default rule
+  std::string dump;       // prefix of the per-face CSV files; empty: none
   std::vector<std::string> parts;
 };
 
@@ -84,7 +87,8 @@ void run_part(const std::string& name, const Options& options) {
   const geometry::SurfaceMesh& mesh = result.boundary.solver_mesh;
   const std::vector<geometry::WallLabel> labels = part.label_faces(mesh);
   std::vector<double> nominal, nominal_area, rim, rim_area;
-  double low_area = 0.0, total_nominal = 0.0, flagged_at_11 = 0.0;
+  double low_area = 0.0, total_nominal = 0.0, flagged_at_11 = 0.0, worst_t = 0.0;
+  Eigen::Index worst_low = -1;  // the nominal face read lowest against its wall
   std::vector<double> feature_area(part.features.size(), 0.0),
       feature_flagged(part.features.size(), 0.0);
   for (Eigen::Index f = 0; f < mesh.num_faces(); ++f) {
@@ -95,8 +99,13 @@ void run_part(const std::string& name, const Options& options) {
         nominal.push_back(value / l.thickness);
         nominal_area.push_back(area);
         total_nominal += area;
-        if (value < 0.9 * l.thickness)
+        if (value < 0.9 * l.thickness) {
           low_area += area;
+          if (worst_low < 0 || value / l.thickness < result.thickness(worst_low) / worst_t) {
+            worst_low = f;
+            worst_t = l.thickness;
+          }
+        }
         if (value < 1.1 * l.thickness)
           flagged_at_11 += area;
         break;
@@ -121,6 +130,45 @@ void run_part(const std::string& name, const Options& options) {
               quantile(rim, rim_area, 0.5), result.regions.empty() ? "PASS" : "FAIL",
               result.regions.size(), 100.0 * flagged_at_11 / std::max(total_nominal, 1e-300),
               seconds);
+  if (worst_low >= 0) {
+    const Eigen::Vector3d x = mesh.face_centroids().row(worst_low).transpose();
+    std::printf("    nominal faces below 0.9 t: the lowest reads %.4f t at (%.2f, %.2f, %.2f)\n",
+                result.thickness(worst_low) / worst_t, x.x(), x.y(), x.z());
+  }
+  if (!options.dump.empty()) {
+    // One row per solver face: where it is, its label and every reading of the search.
+    std::FILE* out = std::fopen((options.dump + name + ".csv").c_str(), "w");
+    if (out) {
+      std::fprintf(out, "x,y,z,nx,ny,nz,role,t,thickness,mid_thickness,depth,rim_indicator,"
+                        "pair_thickness\n");
+      const analysis::WallThickness& w = result.wall;
+      const bool wall = w.depth.size() == mesh.num_faces();
+      for (Eigen::Index f = 0; f < mesh.num_faces(); ++f) {
+        const auto& l = labels[std::size_t(f)];
+        std::fprintf(out, "%g,%g,%g,%g,%g,%g,%s,%g,%g,%g,%g,%g,%g\n", mesh.face_centroids()(f, 0),
+                     mesh.face_centroids()(f, 1), mesh.face_centroids()(f, 2),
+                     mesh.face_normals()(f, 0), mesh.face_normals()(f, 1),
+                     mesh.face_normals()(f, 2), geometry::to_string(l.role), l.thickness,
+                     result.thickness(f), wall ? w.mid_thickness(f) : NAN,
+                     wall ? w.depth(f) : NAN, wall ? w.rim_indicator(f) : NAN,
+                     wall ? w.pair_thickness(f) : NAN);
+      }
+      std::fclose(out);
+    }
+  }
+  // Every thin region: what its minimum is, where, and the role of the face that holds it
+  // (a region on a part's nominal walls or rims is a false alarm).
+  for (const analysis::ThinRegion& r : result.regions) {
+    Eigen::Index at = r.face_indices.empty() ? -1 : r.face_indices.front();
+    for (const int f : r.face_indices)
+      if (result.thickness(f) < result.thickness(at)) at = f;
+    const geometry::WallLabel& l = labels[std::size_t(at)];
+    std::printf("    region  min %.3f at (%.2f, %.2f, %.2f) on a %s face (t %g), area %.2f, "
+                "%zu faces\n",
+                r.minimum, r.min_location.x(), r.min_location.y(), r.min_location.z(),
+                geometry::to_string(l.role), l.thickness, r.area,
+                r.face_indices.size());
+  }
   for (std::size_t k = 0; k < part.features.size(); ++k) {
     const geometry::PartFeature& feature = part.features[k];
     if (feature.role == geometry::WallRole::thin_feature) {
@@ -169,6 +217,8 @@ int main(int argc, char** argv) {
     const std::string arg = argv[i];
     if (arg == "--measure" && i + 1 < argc) {
       options.measure = argv[++i];
+    } else if (arg == "--dump" && i + 1 < argc) {
+      options.dump = argv[++i];
     } else if (arg == "--max-edge" && i + 1 < argc) {
       options.max_edge = std::stod(argv[++i]);
     } else if (arg == "--threads" && i + 1 < argc) {
@@ -176,7 +226,7 @@ int main(int argc, char** argv) {
     } else if (!arg.empty() && arg[0] == '-') {
       std::fprintf(stderr,
                    "usage: bench_wall_thickness [--measure wall|sphere|paper] [--max-edge E] "
-                   "[--threads N] [PART ...]\n");
+                   "[--threads N] [--dump PREFIX] [PART ...]\n");
       return 2;
     } else {
       options.parts.push_back(arg);

@@ -26,8 +26,19 @@
 // curved wall (H the mean curvature: the mid-surface of a harmonic field is not the
 // geometric middle; ±7 % on the inner and outer skin of a 30/24 mm tube).
 //
+// Where a face of the opposite skin reaches the same mid-surface point, the two skins'
+// separation across the wall (analysis/mid_surface_pairs.hpp) is exact on curved walls and
+// tapers as well, and replaces h_twice. It also reads a wall where it meets another: there
+// the mid-surface point lies in the junction, whose inscribed sphere is larger than either
+// wall's, and h_mid reads up to +35 % (the outer corner of a 3 mm L-bracket, the plate at the
+// foot of a rib), while the skins across the wall are still the wall's. Where h_mid exceeds
+// the separation by more than kJunctionRatio, the separation is taken. A ball or a rod,
+// whose mid-surface points gather at the centre or the axis, pairs faces up to
+// arccos(kOppositeCosine) off the antipode, reading 2R·cos(θ/2) ≤ 2R; h_mid is exact there
+// and stays within kJunctionRatio of that, so it is kept.
+//
 // wall_thickness() takes h_mid, the exact reading wherever the mid-surface point is a
-// point of one wall, and turns to h_twice where the field there still carries another
+// point of one wall, and turns to the rim reading where the field there still carries another
 // surface's source: the part of s that is not across the wall, rim_indicator = |s(p0)| /
 // |s(x)·n| (s(p0)·n = 0 by construction), is 0 inside a wall, a tube or at the centre of a
 // rod, and 0.2–1.5 within half a wall of a rim. When h_twice is far above h_mid the search
@@ -64,19 +75,42 @@ inline double mid_surface_thickness(const Eigen::Vector3d& eigenvalues, double h
 /// drops below 0.1.
 inline constexpr double kRimFrom = 0.1;
 inline constexpr double kRimFull = 0.3;
+/// A reading above this multiple of the skins' separation (where a pair was found) is a
+/// junction's: the separation is taken.
+inline constexpr double kJunctionRatio = 1.05;
 /// h_twice above this multiple of h_mid means the search ran along the wall, not across it.
 inline constexpr double kAlongWallRatio = 1.5;
+
+/// Whether the search ran along the wall rather than across it (twice the depth above
+/// kAlongWallRatio·h_mid).
+inline bool along_wall(double mid_thickness, double twice_depth) {
+  return twice_depth > kAlongWallRatio * mid_thickness;
+}
+
+/// The weight of the rim reading: 0 up to kRimFrom, 1 from kRimFull on, linear between.
+inline double rim_weight(double rim_indicator) {
+  return std::clamp((rim_indicator - kRimFrom) / (kRimFull - kRimFrom), 0.0, 1.0);
+}
 
 /// The wall thickness from the two readings and the rim indicator (see above) [model units].
 /// `twice_depth` may be NaN (no mid-surface point found along the normal): h_mid is used.
 /// NaN when the search ran along the wall (twice_depth > kAlongWallRatio·mid_thickness).
-inline double wall_thickness(double mid_thickness, double twice_depth, double rim_indicator) {
+/// `pair_thickness`, where finite, is the rim reading instead of twice_depth: the separation
+/// of the two skins that share the mid-surface point (analysis/mid_surface_pairs.hpp), exact
+/// on curved walls and tapers where twice the depth is not.
+inline double wall_thickness(double mid_thickness, double twice_depth, double rim_indicator,
+                             double pair_thickness = std::numeric_limits<double>::quiet_NaN()) {
   if (!std::isfinite(twice_depth))
     return mid_thickness;
-  if (twice_depth > kAlongWallRatio * mid_thickness)
+  if (along_wall(mid_thickness, twice_depth))
     return std::numeric_limits<double>::quiet_NaN();
-  const double weight = std::clamp((rim_indicator - kRimFrom) / (kRimFull - kRimFrom), 0.0, 1.0);
-  return (1.0 - weight) * mid_thickness + weight * twice_depth;
+  const double weight = rim_weight(rim_indicator);
+  const double rim_reading = std::isfinite(pair_thickness) ? pair_thickness : twice_depth;
+  const double reading = (1.0 - weight) * mid_thickness + weight * rim_reading;
+  // Where walls meet, the pair's wall rather than the junction's larger sphere.
+  if (std::isfinite(pair_thickness) && reading > kJunctionRatio * pair_thickness)
+    return pair_thickness;
+  return reading;
 }
 
 }  // namespace bemshape::features

@@ -36,7 +36,20 @@ double smallest_angle_degrees(const SurfaceMesh& m) {
   return smallest;
 }
 
+/// An input is kept as the solver mesh when it is already what the remeshing aims at: no
+/// edge longer than the target, no angle below this [degrees] (a well-shaped mesh, not a CAD
+/// export's slivers), and at most kKeepFaceRatio times the faces the target gives.
+constexpr double kKeepAngleDegrees = 20.0;
+constexpr double kKeepFaceRatio = 2.0;
+
 }  // namespace
+
+bool fine_enough(const SurfaceMesh& mesh, double target_edge) {
+  return !mesh.empty() && mesh.max_edge_length() <= target_edge &&
+         double(mesh.num_faces()) <=
+             kKeepFaceRatio * mesh.area() / (kEquilateralArea * target_edge * target_edge) &&
+         smallest_angle_degrees(mesh) >= kKeepAngleDegrees;
+}
 
 GradedMesh refine_uniformly(const SurfaceMesh& mesh, double target_edge,
                             const RemeshingOptions& options, const ProgressCallback& progress) {
@@ -95,6 +108,10 @@ SurfaceMesh refine_to_edge_length(const SurfaceMesh& mesh, double target_edge,
   }
   throw_if_cancelled();
   report_progress(progress, "remeshing", 0.0);
+  if (fine_enough(mesh, target_edge)) {
+    report_progress(progress, "remeshing", 1.0);
+    return mesh;
+  }
   detail::CgalRemeshParameters parameters;
   parameters.target_edge = target_edge;
   parameters.sharp_angle_degrees = options.sharp_angle_degrees;

@@ -6,7 +6,7 @@
 //
 //   refine_to_edge_length   CGAL's Polygon_mesh_processing::isotropic_remeshing (Botsch &
 //                           Kobbelt, SGP 2004) with the sharp edges constrained: the mesh of
-//                           --max-edge. Constrained creases are only split, so a strip between
+//                           --max-edge (an input already that fine and well shaped is kept). Constrained creases are only split, so a strip between
 //                           two close creases becomes needles; where CGAL leaves a degenerate
 //                           triangle (coarse sizes), the result of refine_uniformly instead.
 //   refine_uniformly        the graded remesher (graded_remeshing.hpp) with the constant size
@@ -51,8 +51,14 @@ GradedMesh refine_uniformly(const SurfaceMesh& mesh, double target_edge,
                             const RemeshingOptions& options = {},
                             const ProgressCallback& progress = {});
 
+/// Whether `mesh` is already what remeshing to target_edge aims at, and is kept as it is: no
+/// edge longer than target_edge, no angle below 20°, at most twice the faces of the target
+/// (area/(0.433·target_edge²)). A geodesic sphere given with --max-edge at or above its
+/// longest edge is solved on its own triangles.
+bool fine_enough(const SurfaceMesh& mesh, double target_edge);
+
 /// The same by CGAL's isotropic remeshing (the mesh only), or by refine_uniformly where CGAL
-/// leaves a degenerate triangle.
+/// leaves a degenerate triangle; `mesh` itself where it is fine_enough.
 SurfaceMesh refine_to_edge_length(const SurfaceMesh& mesh, double target_edge,
                                   const RemeshingOptions& options = {},
                                   const ProgressCallback& progress = {});

@@ -90,7 +90,10 @@ LabelledPart l_bracket() {
       {"gusset rib", WallRole::thin_feature, 1.5, box(Vec3(3, 24.25, 3), Vec3(28, 25.75, 28))});
   const auto features = part.features;
   part.label = [features](const Vec3& x, const Vec3& n) {
-    if (x.y() > 24.25 - kOn && x.y() < 25.75 + kOn && x.x() > 3 - kOn && x.z() > 3 - kOn)
+    // The rib: its two faces, its sloping end (x + z = 30.9) and its top edge; the legs'
+    // faces beside its ends (x + z beyond the slope) are the legs'.
+    if (x.y() > 24.25 - kOn && x.y() < 25.75 + kOn && x.x() > 3 - kOn && x.z() > 3 - kOn &&
+        x.x() + x.z() < 30.9 + kOn)
       return feature(features, 0);
     if (std::abs(n.y()) > 0.99 || near(x.x(), 60.0) || near(x.z(), 40.0)) return rim(3.0);
     return nominal(3.0);  // both legs, and the square corner where they meet

@@ -79,7 +79,8 @@ nlohmann::json thickness_report_json(const analysis::ThicknessOptions& options,
   nlohmann::json wall_search = nullptr;
   if (result.column == analysis::kColumnWall)
     wall_search = {{"evaluations", result.wall.evaluations},
-                   {"faces_without_mid_surface", result.wall.filled_faces}};
+                   {"faces_without_mid_surface", result.wall.filled_faces},
+                   {"faces_paired_across_the_wall", result.wall.paired_faces}};
   nlohmann::json report = report_header("thickness", names.input);
   report["output"] = optional_text(names.output);
   report["solver_output"] = optional_text(names.solver_output);

@@ -75,6 +75,25 @@ TEST_CASE("thin regions: one per edge-connected set below the threshold, thinnes
   CHECK(regions[0].centroid.z() == Approx(0.0).margin(1e-12));
   CHECK(regions[1].centroid.z() == Approx(1.0));
   CHECK(analysis::thin_regions(cube, bottom_and_top_thin(cube), 0.1).empty());
+  // Bottom and top are the two skins of one wall: faces across the wall from each other join
+  // one region, its centroid between them.
+  Eigen::VectorXi across = Eigen::VectorXi::Constant(cube.num_faces(), -1);
+  std::vector<int> bottom, top;
+  for (Eigen::Index f = 0; f < cube.num_faces(); ++f) {
+    if (cube.face_normals()(f, 2) < -0.5) bottom.push_back(int(f));
+    if (cube.face_normals()(f, 2) > 0.5) top.push_back(int(f));
+  }
+  REQUIRE(bottom.size() == 2);
+  REQUIRE(top.size() == 2);
+  across(bottom[0]) = top[0];
+  const auto joined = analysis::thin_regions(cube, bottom_and_top_thin(cube), 0.5, across);
+  REQUIRE(joined.size() == 1);
+  CHECK(joined[0].faces == 4);
+  CHECK(joined[0].minimum == 0.1);
+  CHECK(joined[0].centroid.z() == Approx(0.5));
+  // Only selected faces join: at 0.15 the top (0.2) is not thin.
+  CHECK(analysis::thin_regions(cube, bottom_and_top_thin(cube), 0.15, across).size() == 1);
+  CHECK(analysis::thin_regions(cube, bottom_and_top_thin(cube), 0.15, across)[0].faces == 2);
   // Above every value: the whole closed surface is one region.
   const auto all = analysis::thin_regions(cube, bottom_and_top_thin(cube), 2.0);
   REQUIRE(all.size() == 1);

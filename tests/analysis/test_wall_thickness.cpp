@@ -1,7 +1,7 @@
 // The wall thickness on the surface (analysis/wall_thickness.hpp, docs/theory.md section 5)
 // on solids whose walls are known: a ball (the diameter, the curvature offset removed), a
 // square plate (its thickness on every face, rims and corners included, where the sphere
-// reading grows), a plate with a boss (the boss is the thick region and is located), and
+// reading grows), a ring (both curved skins up to the end faces), a plate with a boss (the boss is the thick region and is located), and
 // h0 from the part (2·V/A).
 #include <catch2/catch.hpp>
 
@@ -100,6 +100,42 @@ TEST_CASE("wall thickness: a square plate reads its thickness up to its rims and
   CHECK(thin.regions.front().area == Approx(plate.report.area).epsilon(1e-9));
   check.min_thickness = 0.9 * kPlateThickness;
   CHECK(analysis::measure_thickness(plate, check).regions.empty());
+}
+
+TEST_CASE("wall thickness: a ring reads its wall on both skins up to its end faces") {
+  // Ring R1 = 4, R2 = 5.5 (wall 1.5), 3 high: curved skins with rims at both ends. There twice
+  // the depth to the mid-surface is off by about ±t²H/2 (±7 % here), the skins' separation
+  // at their shared mid-surface point is not (analysis/mid_surface_pairs.hpp).
+  constexpr double kWall = 1.5;
+  const int facets = 64;
+  const geometry::SurfaceMesh ring = geometry::mesh_difference(
+      geometry::make_faceted_cylinder(Eigen::Vector2d(0, 0), 5.5, 0.0, 3.0, facets),
+      geometry::make_faceted_cylinder(Eigen::Vector2d(0, 0), 4.0, -1.0, 4.0, facets));
+  analysis::ThicknessOptions options;
+  options.solve.h0 = kWall;
+  options.solve.max_edge = 0.45;
+  options.map_to_input = false;
+  const analysis::ThicknessResult result = analysis::measure_thickness(prepared(ring), options);
+  const geometry::SurfaceMesh& mesh = result.boundary.solver_mesh;
+  // The faceted skins are R·cos(π/64) from the axis at their flats' middles: the wall between
+  // flats is 1.5·cos(π/64) to 1.5 (0.12 %).
+  double worst = 0.0, worst_rim = 0.0;
+  Eigen::Index paired = 0, rim_rows = 0;
+  for (Eigen::Index f = 0; f < mesh.num_faces(); ++f) {
+    if (std::abs(mesh.face_normals()(f, 2)) > 0.5) continue;  // end faces: along the wall
+    const double error = std::abs(result.thickness(f) / kWall - 1.0);
+    worst = std::max(worst, error);
+    const double z = mesh.face_centroids()(f, 2);
+    if (std::min(z, 3.0 - z) < 0.5 * kWall) {
+      ++rim_rows;
+      worst_rim = std::max(worst_rim, error);
+      paired += std::isfinite(result.wall.pair_thickness(f));
+    }
+  }
+  CAPTURE(worst, worst_rim, paired, rim_rows, result.wall.paired_faces);
+  CHECK(worst < 0.02);
+  CHECK(worst_rim < 0.02);
+  CHECK(paired > rim_rows / 2);  // most skin faces within half a wall of a rim were paired
 }
 
 TEST_CASE("wall thickness: the boss on a plate is the one thick region, located at the boss") {
