@@ -1,7 +1,7 @@
 // analysis/measure_thickness.hpp on the validation ball (R = 0.5, h0 = 0.3, a = 0.2, the
 // default element size: 1280 faces) against its closed form, the same triangles given as a
 // file and as arrays giving the same thickness to the last bit, and as 3MF and STL files
-// giving the same thickness to 1e-6.
+// giving the same thickness to 1e-6; and an 81,920-face sphere at every vertex.
 #include <unistd.h>
 #include <catch2/catch.hpp>
 
@@ -155,4 +155,32 @@ TEST_CASE("measure_thickness: a part as 3MF and as STL of the same triangles, wi
   CAPTURE(moved);
   CHECK(moved > 0.0);
   CHECK(moved < 1e-7 * kR);
+}
+
+TEST_CASE("measure_thickness: an 81,920-face sphere, h_p and h_f within 2 % at every vertex") {
+  // R = 1, h0 = 0.1 (κ·h ≈ 1.4 on its 0.028 edges), --max-edge at its longest edge: the
+  // solver works on the sphere's own triangles (geometry::fine_enough), on the H-matrix path.
+  // s = A·x in the ball: h_p = h0(1/(h0²A) − a) and h_f = h0(1/(3h0²A) − a) everywhere on the
+  // surface, and the wall is the diameter (bench/bench_sphere_surface.cpp prints the same).
+  const PdeParameters pde{0.1, 0.2};
+  const BallSolution ball = ball_solution(pde, 1.0);
+  const double h_p = principal_thickness(pde, ball.A);
+  const double h_f = paper_thickness(pde, inverse_thickness(pde, 3.0 * ball.A));
+  const geometry::SurfaceMesh sphere = geometry::make_geodesic_sphere(1.0, 64);
+  REQUIRE(sphere.num_faces() == 81920);
+  analysis::ThicknessOptions options;
+  options.solve.h0 = pde.h0;
+  options.solve.a = pde.a;
+  options.solve.max_edge = sphere.max_edge_length();
+  options.measure = analysis::ThicknessMeasure::principal;
+  const analysis::ThicknessResult result = analysis::measure_thickness(
+      analysis::prepare_triangles(sphere.vertices(), sphere.faces(), "sphere"), options);
+  CHECK(result.boundary.solver_mesh.num_faces() == 81920);
+  const Eigen::MatrixXd& vertex = result.input_features.vertex;
+  REQUIRE(vertex.rows() == sphere.num_vertices());
+  const double hp_error = ((vertex.col(analysis::kColumnHp).array() - h_p).abs() / h_p).maxCoeff();
+  const double hf_error = ((vertex.col(analysis::kColumnHf).array() - h_f).abs() / h_f).maxCoeff();
+  CAPTURE(h_p, h_f, hp_error, hf_error);
+  CHECK(hp_error < 0.02);
+  CHECK(hf_error < 0.02);
 }

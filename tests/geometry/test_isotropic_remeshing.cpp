@@ -113,6 +113,22 @@ TEST_CASE("plate_holes slivers become a closed mesh within the edge bound") {
   CHECK(fine.bounding_box().extent().isApprox(plate.mesh.bounding_box().extent(), 1e-12));
 }
 
+TEST_CASE("a mesh already as fine as the target and well shaped is kept as it is") {
+  const SurfaceMesh sphere = make_geodesic_sphere(1.0, 16);
+  const double longest = sphere.max_edge_length();
+  CHECK(fine_enough(sphere, longest));
+  const SurfaceMesh kept = refine_to_edge_length(sphere, longest);
+  CHECK(kept.vertices() == sphere.vertices());
+  CHECK(kept.faces() == sphere.faces());
+  // A smaller target remeshes; so does a much larger one (the sphere has more than twice the
+  // faces it asks for), and so does plate_holes at any size (slivers below 20°).
+  CHECK_FALSE(fine_enough(sphere, 0.99 * longest));
+  CHECK(refine_to_edge_length(sphere, 0.7 * longest).num_faces() > sphere.num_faces());
+  CHECK_FALSE(fine_enough(sphere, 3.0 * longest));
+  const PreparedMesh plate = prepare_mesh_file(data + "/meshes/plate_holes.STL");
+  CHECK_FALSE(fine_enough(plate.mesh, 1000.0));
+}
+
 TEST_CASE("remeshing refuses nonsense targets and runaway sizes") {
   const SurfaceMesh box = make_box(Eigen::Vector3d::Zero(), Eigen::Vector3d::Ones(), 1.0);
   CHECK_THROWS_AS(refine_to_edge_length(box, 0.0), InputError);
