@@ -15,9 +15,9 @@ namespace {
 double face_edge(double area) { return std::sqrt(4.0 * area / std::sqrt(3.0)); }
 
 /// Mid-surface points binned in cubes of side `cell`.
-class PointGrid {
+class MidPointBins {
  public:
-  PointGrid(const Eigen::MatrixX3d& points, const FaceMask& used, double cell) : cell_(cell) {
+  MidPointBins(const Eigen::MatrixX3d& points, const FaceMask& used, double cell) : cell_(cell) {
     for (Eigen::Index i = 0; i < points.rows(); ++i)
       if (used(i) && points.row(i).allFinite())
         cells_[key(index(points.row(i).transpose()))].push_back(i);
@@ -67,7 +67,7 @@ MidSurfacePairs mid_surface_pairs(const geometry::SurfaceMesh& mesh,
   if (!wanted.any()) return result;
   // Cells of twice the mean edge: a query of the typical radius looks at 3³ cells.
   const double cell = 2.0 * face_edge(mesh.face_areas().mean());
-  const PointGrid grid(mid_point, across, cell);
+  const MidPointBins grid(mid_point, across, cell);
   for (Eigen::Index f = 0; f < nf; ++f) {
     if (!wanted(f) || !std::isfinite(depth(f))) continue;
     const Eigen::Vector3d p = mid_point.row(f).transpose();

@@ -77,17 +77,6 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-double min_angle_degrees(const geometry::SurfaceMesh& m) {
-  double smallest = 180.0;
-  for (Eigen::Index f = 0; f < m.num_faces(); ++f)
-    for (int k = 0; k < 3; ++k) {
-      const Eigen::Vector3d u = m.corner(f, (k + 1) % 3) - m.corner(f, k);
-      const Eigen::Vector3d w = m.corner(f, (k + 2) % 3) - m.corner(f, k);
-      smallest = std::min(smallest, std::atan2(u.cross(w).norm(), u.dot(w)) * 180.0 / std::numbers::pi);
-    }
-  return smallest;
-}
-
 double min_edge(const geometry::SurfaceMesh& m) {
   double smallest = std::numeric_limits<double>::infinity();
   for (Eigen::Index f = 0; f < m.num_faces(); ++f)
@@ -115,7 +104,7 @@ void print_line(const Part& part, const std::string& kind, const geometry::Surfa
   std::printf("%-14s %-8s faces %8ld  %7.2f s  edge %.3g..%.3g  min angle %5.1f  max edge/h %.2f  "
               "volume %+.2e  area %+.2e  distance %.1e\n",
               part.name.c_str(), kind.c_str(), static_cast<long>(m.num_faces()), seconds, min_edge(m),
-              m.max_edge_length(), min_angle_degrees(m), max_ratio,
+              m.max_edge_length(), m.smallest_angle_degrees(), max_ratio,
               m.signed_volume() / part.mesh.signed_volume() - 1.0, m.area() / part.mesh.area() - 1.0,
               distance / diagonal);
 }

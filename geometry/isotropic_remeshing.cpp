@@ -25,34 +25,9 @@ constexpr double kFloorDiagonalFraction = 0.01;
 /// (29, 0, 0), (28, 0, 0), (27, 0, 0) from a 120 × 80 × 4 plate at edge 8.
 constexpr double kDegenerateAngleDegrees = 1e-3;
 
-double smallest_angle_degrees(const SurfaceMesh& m) {
-  double smallest = 180.0;
-  for (Eigen::Index f = 0; f < m.num_faces(); ++f)
-    for (int k = 0; k < 3; ++k) {
-      const Eigen::Vector3d u = m.corner(f, (k + 1) % 3) - m.corner(f, k);
-      const Eigen::Vector3d w = m.corner(f, (k + 2) % 3) - m.corner(f, k);
-      smallest = std::min(smallest, std::atan2(u.cross(w).norm(), u.dot(w)) * 57.29577951308232);
-    }
-  return smallest;
-}
-
-/// An input is kept as the solver mesh when it is already what the remeshing aims at: no
-/// edge longer than the target, no angle below this [degrees] (a well-shaped mesh, not a CAD
-/// export's slivers), and at most kKeepFaceRatio times the faces the target gives.
-constexpr double kKeepAngleDegrees = 20.0;
-constexpr double kKeepFaceRatio = 2.0;
-
-}  // namespace
-
-bool fine_enough(const SurfaceMesh& mesh, double target_edge) {
-  return !mesh.empty() && mesh.max_edge_length() <= target_edge &&
-         double(mesh.num_faces()) <=
-             kKeepFaceRatio * mesh.area() / (kEquilateralArea * target_edge * target_edge) &&
-         smallest_angle_degrees(mesh) >= kKeepAngleDegrees;
-}
-
-GradedMesh refine_uniformly(const SurfaceMesh& mesh, double target_edge,
-                            const RemeshingOptions& options, const ProgressCallback& progress) {
+/// Throws InputError for a target that is not a positive length or an empty mesh,
+/// ResourceError when the target would create more than max_faces faces.
+void check_target(const SurfaceMesh& mesh, double target_edge, double max_faces) {
   if (!(std::isfinite(target_edge) && target_edge > 0.0)) {
     std::ostringstream msg;
     msg << "target edge length " << target_edge << " must be a positive number";
@@ -61,12 +36,28 @@ GradedMesh refine_uniformly(const SurfaceMesh& mesh, double target_edge,
   if (mesh.empty())
     throw InputError("cannot remesh an empty mesh");
   const double estimate = mesh.area() / (kEquilateralArea * target_edge * target_edge);
-  if (estimate > options.max_faces) {
+  if (estimate > max_faces) {
     std::ostringstream msg;
     msg << "target edge length " << target_edge << " would create about " << std::llround(estimate)
-        << " faces (limit " << std::llround(options.max_faces) << "): choose a larger edge length";
+        << " faces (limit " << std::llround(max_faces) << "): choose a larger edge length";
     throw ResourceError(msg.str());
   }
+}
+
+}  // namespace
+
+bool fine_enough(const SurfaceMesh& mesh, double target_edge) {
+  // The graded remesher's rule for keeping its input (graded_remeshing.hpp), with no edge
+  // above the target instead of 4/3 of it.
+  return !mesh.empty() && mesh.max_edge_length() <= target_edge &&
+         double(mesh.num_faces()) <=
+             kKeepInputFaceRatio * mesh.area() / (kEquilateralArea * target_edge * target_edge) &&
+         mesh.smallest_angle_degrees() >= kMinAngleBoundDegrees;
+}
+
+GradedMesh refine_uniformly(const SurfaceMesh& mesh, double target_edge,
+                            const RemeshingOptions& options, const ProgressCallback& progress) {
+  check_target(mesh, target_edge, options.max_faces);
   throw_if_cancelled();
   CreaseOptions crease_options;
   crease_options.crease_angle_degrees = options.sharp_angle_degrees;
@@ -92,20 +83,7 @@ GradedMesh refine_uniformly(const SurfaceMesh& mesh, double target_edge,
 SurfaceMesh refine_to_edge_length(const SurfaceMesh& mesh, double target_edge,
                                   const RemeshingOptions& options,
                                   const ProgressCallback& progress) {
-  if (!(std::isfinite(target_edge) && target_edge > 0.0)) {
-    std::ostringstream msg;
-    msg << "target edge length " << target_edge << " must be a positive number";
-    throw InputError(msg.str());
-  }
-  if (mesh.empty())
-    throw InputError("cannot remesh an empty mesh");
-  const double estimate = mesh.area() / (kEquilateralArea * target_edge * target_edge);
-  if (estimate > options.max_faces) {
-    std::ostringstream msg;
-    msg << "target edge length " << target_edge << " would create about " << std::llround(estimate)
-        << " faces (limit " << std::llround(options.max_faces) << "): choose a larger edge length";
-    throw ResourceError(msg.str());
-  }
+  check_target(mesh, target_edge, options.max_faces);
   throw_if_cancelled();
   report_progress(progress, "remeshing", 0.0);
   if (fine_enough(mesh, target_edge)) {
@@ -123,7 +101,7 @@ SurfaceMesh refine_to_edge_length(const SurfaceMesh& mesh, double target_edge,
   SurfaceMesh refined(std::move(result.vertices), std::move(result.faces));
   // CGAL's remeshing can leave a degenerate triangle at coarse sizes; the graded remesher's
   // constant field never does (its guards keep every angle near 20°).
-  if (smallest_angle_degrees(refined) < kDegenerateAngleDegrees)
+  if (refined.smallest_angle_degrees() < kDegenerateAngleDegrees)
     return refine_uniformly(mesh, target_edge, options, progress).mesh;
   report_progress(progress, "remeshing", 1.0);
   return refined;

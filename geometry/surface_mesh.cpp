@@ -1,6 +1,7 @@
 #include "geometry/surface_mesh.hpp"
 
 #include <cmath>
+#include <numbers>
 #include <sstream>
 
 #include "core/errors.hpp"
@@ -66,6 +67,17 @@ double SurfaceMesh::max_edge_length() const {
     for (int k = 0; k < 3; ++k)
       longest = std::max(longest, (corner(f, (k + 1) % 3) - corner(f, k)).norm());
   return longest;
+}
+
+double SurfaceMesh::smallest_angle_degrees() const {
+  double smallest = 180.0;
+  for (Eigen::Index f = 0; f < faces_.rows(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector3d u = corner(f, (k + 1) % 3) - corner(f, k);
+      const Eigen::Vector3d w = corner(f, (k + 2) % 3) - corner(f, k);
+      smallest = std::min(smallest, std::atan2(u.cross(w).norm(), u.dot(w)) * 180.0 / std::numbers::pi);
+    }
+  return smallest;
 }
 
 double SurfaceMesh::mean_edge_length() const {

@@ -53,6 +53,8 @@ class SurfaceMesh {
   /// Longest and mean edge length over all faces [model units].
   double max_edge_length() const;
   double mean_edge_length() const;
+  /// Smallest interior angle of any face [degrees]; 180 for an empty mesh.
+  double smallest_angle_degrees() const;
 
  private:
   Eigen::MatrixX3d vertices_;

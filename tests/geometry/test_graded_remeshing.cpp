@@ -43,17 +43,6 @@ PreparedMesh prepared_part(const std::string& name, double* h0 = nullptr) {
   return prepared;
 }
 
-double min_angle_degrees(const SurfaceMesh& m) {
-  double smallest = 180.0;
-  for (Eigen::Index f = 0; f < m.num_faces(); ++f)
-    for (int k = 0; k < 3; ++k) {
-      const Eigen::Vector3d u = m.corner(f, (k + 1) % 3) - m.corner(f, k);
-      const Eigen::Vector3d w = m.corner(f, (k + 2) % 3) - m.corner(f, k);
-      smallest = std::min(smallest, std::atan2(u.cross(w).norm(), u.dot(w)) * 180.0 / std::numbers::pi);
-    }
-  return smallest;
-}
-
 /// Length of each input crease covered by output edges lying on it: an output edge whose two
 /// ends are within `tolerance` of the crease's line contributes the overlap of its projection
 /// with the crease segment (the remesher may drop a vertex inside a straight crease, so one
@@ -98,7 +87,7 @@ void require_same_surface(const SurfaceMesh& input, const SurfaceMesh& output,
   CHECK(!v.needle_faces);
   CHECK(v.shells == validate_mesh(input.vertices(), input.faces()).shells);
   CHECK(output.signed_volume() > 0.0);
-  CHECK(min_angle_degrees(output) >= kAngleReached);
+  CHECK(output.smallest_angle_degrees() >= kAngleReached);
   const double diagonal = input.bounding_box().diagonal();
   CHECK(testing::max_distance_to_surface(output.vertices(), input.vertices(), input.faces()) <=
         1e-9 * diagonal);
@@ -200,7 +189,7 @@ TEST_CASE("a coarse uniform mesh of a plate has no degenerate triangle") {
     CHECK(v.closed_manifold());
     CHECK(!v.zero_area_faces);
     CHECK(!v.collapsed_faces);
-    CHECK(min_angle_degrees(cgal) > 1e-3);
+    CHECK(cgal.smallest_angle_degrees() > 1e-3);
     CHECK(cgal.signed_volume() == Approx(plate.signed_volume()).epsilon(1e-9));
   }
 }
@@ -215,7 +204,7 @@ TEST_CASE("a tessellated tube: smoothed facets give far fewer faces within the c
   const GradedMesh smoothed = graded_solver_mesh(tube.mesh, p);
   CHECK(smoothed.report.smoothed_edges > 0);
   CHECK(smoothed.mesh.num_faces() < kept.mesh.num_faces() / 2);
-  CHECK(min_angle_degrees(smoothed.mesh) >= kAngleReached);
+  CHECK(smoothed.mesh.smallest_angle_degrees() >= kAngleReached);
   const MeshValidation v = validate_mesh(smoothed.mesh.vertices(), smoothed.mesh.faces());
   CHECK(v.closed_manifold());
   CHECK(!v.inconsistent_edges);
