@@ -41,7 +41,7 @@ CASES = [
     ("sphere 0.5, 1e5 faces", ["sphere", "0.5", "0.0085"],
      ["--h0", "0.3", "--max-edge", "0.0085", "--solver", "hmatrix"]),
     ("sphere 0.5, 1e5 faces, H2", ["sphere", "0.5", "0.0085"],
-     ["--h0", "0.3", "--max-edge", "0.0085", "--solver", "hmatrix", "--far-field", "nested"]),
+     ["--h0", "0.03", "--max-edge", "0.0085", "--solver", "hmatrix", "--far-field", "nested"]),
     ("hollow box, edge 0.025, H2", ["hollow-box", "1", "0.1", "0.025"],
      ["--h0", "0.1", "--max-edge", "0.025", "--solver", "hmatrix", "--far-field", "nested"]),
     ("large-tray, h0 3, edge 3", ["part", "large-tray"], ["--h0", "3", "--max-edge", "3"]),

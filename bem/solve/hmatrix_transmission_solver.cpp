@@ -33,22 +33,21 @@ double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-/// Typical rank of an admissible Laplace block at ε = 1e−8 (measured: 6–20), used only by
-/// the memory estimate.
-constexpr double kTypicalRank = 16.0;
-
-/// With the far field nested (H²), for the memory estimate only. Measured on spheres of
-/// 100820, 200000 and 397620 faces at the defaults (docs/benchmarks.md, "Growth with N"):
-/// 4.2 kB per face of the small blocks' narrow factors, 1.8 kB of bases and 0.6 kB
-/// of couplings, each nearly flat in N. Bytes per face and level of the small blocks' factors
-/// (the 3 levels from leaves of 32 to clusters of 256):
-constexpr double kSmallBlockBytes = 1400.0;
-/// The bases' rank in the estimate's 3·4·k bytes per face (a row and two column rows per
-/// panel, 4 bytes an entry; 1.8 kB per face, the transfer matrices' share included):
-constexpr double kTypicalNestedRank = 150.0;
-/// The couplings' bytes per face and level above nested_min_cluster (0.6 kB per face over
-/// the 8.6–10.6 levels of those spheres; per level, so that deeper trees are not undercounted):
-constexpr double kNestedCouplingBytes = 70.0;
+/// With the far field nested (H²), for the memory estimate's bound: ranks per sheet of
+/// surface a cluster holds (cluster_sheets). Measured (docs/reliability.md, "Estimate and
+/// peak"): the H² part's bases and couplings of a 121680-face sphere match the count at a
+/// rank of about 55, those of the 60120-face hollow box with walls of 0.1 (two sheets in
+/// every cluster) at about 135, 68 per sheet; their largest ranks were 116 and 264. The
+/// factored small blocks held 16 (sphere) and 26.6 (box, 13 per sheet) entries per block
+/// edge entry.
+constexpr double kNestedSheetRank = 80.0;
+constexpr double kSmallBlockSheetRank = 20.0;
+/// The most sheets a cluster is counted with: a corner of three walls reads 3.
+constexpr double kMaxSheets = 4.0;
+/// Near-field entries per panel of a single smooth sheet, per leaf panel (o·g = 2 per pair):
+/// 622 per panel at leaves of 32 and η = 2 on the 121680-face sphere, 19.4 per leaf panel;
+/// 1275 (2.05 sheets) on the 60120-face hollow box.
+constexpr double kSingleSheetNearEntriesPerLeafPanel = 19.4;
 /// Factor entries per entry of a block's edge o·|τ| + g·|σ| in the bound of the low-rank
 /// blocks (HMatrixPartitionCounts::admissible_edges): the recompressed rank of the largest
 /// blocks. Measured (docs/reliability.md, "Estimate and peak"): ...
@@ -114,19 +113,110 @@ RowMajorRows sparse_rows_product(const YukawaNearField<Scalar>& y, const RowMajo
 
 }  // namespace
 
-HMatrixPartitionCounts count_partition(const ClusterTree& tree, const BlockPartition& partition) {
+FarFieldSplit split_far_field(const ClusterTree& tree, const std::vector<BlockIndex>& admissible,
+                              const HMatrixSolverOptions& options) {
+  // range[c]: the preconditioner block that contains cluster c, −1 above them.
+  std::vector<int> range(tree.clusters().size(), -1);
+  const std::vector<int> ranges = tree.clusters_up_to(options.preconditioner_block);
+  for (std::size_t r = 0; r < ranges.size(); ++r) {
+    std::vector<int> stack{ranges[r]};
+    while (!stack.empty()) {
+      const int c = stack.back();
+      stack.pop_back();
+      range[std::size_t(c)] = int(r);
+      if (!tree.cluster(c).is_leaf())
+        stack.insert(stack.end(), {tree.cluster(c).first_child, tree.cluster(c).first_child + 1});
+    }
+  }
+  FarFieldSplit split;
+  for (const BlockIndex& b : admissible) {
+    const bool large = std::min(tree.cluster(b.rows).size(), tree.cluster(b.cols).size()) >=
+                       options.nested_min_cluster;
+    const bool in_one_block = range[std::size_t(b.rows)] >= 0 &&
+                              range[std::size_t(b.rows)] == range[std::size_t(b.cols)];
+    (large && !in_one_block ? split.nested : split.factored).push_back(b);
+  }
+  return split;
+}
+
+std::vector<double> cluster_sheets(const ClusterTree& tree, const std::vector<Panel>& panels) {
+  // Panels' areas summed over tree positions, then over each cluster's range.
+  const auto& perm = tree.permutation();
+  std::vector<double> prefix(perm.size() + 1, 0.0);
+  for (std::size_t p = 0; p < perm.size(); ++p) prefix[p + 1] = prefix[p] + panels[perm[p]].area;
+  std::vector<double> sheets(tree.clusters().size(), 1.0);
+  for (std::size_t c = 0; c < sheets.size(); ++c) {
+    const Cluster& cluster = tree.cluster(int(c));
+    Eigen::Vector3d extent = cluster.box.hi - cluster.box.lo;
+    std::sort(extent.data(), extent.data() + 3);
+    const double footprint = extent(2) * extent(1);
+    const double area = prefix[std::size_t(cluster.end)] - prefix[std::size_t(cluster.begin)];
+    sheets[c] = footprint > 0.0 ? std::clamp(area / footprint, 1.0, kMaxSheets) : 1.0;
+  }
+  return sheets;
+}
+
+HMatrixPartitionCounts count_partition(const ClusterTree& tree, const BlockPartition& partition,
+                                       const std::vector<Panel>& panels,
+                                       const HMatrixSolverOptions& options) {
   // The Laplace row's generator: one output per row panel, two densities (φ, q) per column.
   constexpr double o = 1.0, g = 2.0;
+  const auto size = [&](int c) { return double(tree.cluster(c).size()); };
+  const auto edge = [&](const BlockIndex& b) { return o * size(b.rows) + g * size(b.cols); };
   HMatrixPartitionCounts counts;
   for (const BlockIndex& b : partition.dense)
-    counts.near_entries +=
-        o * double(tree.cluster(b.rows).size()) * g * double(tree.cluster(b.cols).size());
+    counts.near_entries += o * size(b.rows) * g * size(b.cols);
   for (const BlockIndex& b : partition.admissible) {
-    const double edge =
-        o * double(tree.cluster(b.rows).size()) + g * double(tree.cluster(b.cols).size());
-    counts.admissible_edges += edge;
-    counts.largest_admissible_edge = std::max(counts.largest_admissible_edge, edge);
+    counts.admissible_edges += edge(b);
+    counts.largest_admissible_edge = std::max(counts.largest_admissible_edge, edge(b));
   }
+
+  // Sheets per cluster: its own (cluster_sheets), and at least those the near field reads
+  // over the whole surface, its entries per panel over a single smooth sheet's. The first
+  // sees both skins where a cluster holds them; the second where a wall's other skin is in
+  // the clusters beside it, which the ranks of its blocks see as well (on the 60120-face box
+  // the clusters' own read fewer sheets than its ranks show, on a 6168-face box with walls
+  // of half an edge the near field reads fewer: docs/reliability.md, "Estimate and peak").
+  std::vector<double> sheets = cluster_sheets(tree, panels);
+  const double near_sheets = std::clamp(
+      counts.near_entries / (double(tree.root().size()) * kSingleSheetNearEntriesPerLeafPanel *
+                             double(options.leaf_size)),
+      1.0, kMaxSheets);
+  for (double& s : sheets) s = std::max(s, near_sheets);
+  const auto block_sheets = [&](const BlockIndex& b) {
+    return std::max(sheets[std::size_t(b.rows)], sheets[std::size_t(b.cols)]);
+  };
+  const FarFieldSplit split = split_far_field(tree, partition.admissible, options);
+  for (const BlockIndex& b : split.factored)
+    counts.factored_rank_edges += kSmallBlockSheetRank * block_sheets(b) * edge(b);
+  // The H² part: a basis on every cluster inside a nested block's cluster, on each side, of
+  // rank k_t = kNestedSheetRank·sheets(t), never more than the cluster's rows (o|t| on the
+  // row side, g|t| on the column side). Leaves hold d|t| × k_t, inner clusters
+  // (k_t₁ + k_t₂) × k_t; a coupling is k_τ × k_σ.
+  const auto rank = [&](int c, double d) {
+    return std::min(kNestedSheetRank * sheets[std::size_t(c)], d * size(c));
+  };
+  for (const double d : {o, g}) {
+    std::vector<char> has_basis(tree.clusters().size(), 0);
+    std::vector<int> stack;
+    for (const BlockIndex& b : split.nested) stack.push_back(d == o ? b.rows : b.cols);
+    while (!stack.empty()) {
+      const int c = stack.back();
+      stack.pop_back();
+      if (has_basis[std::size_t(c)]) continue;
+      has_basis[std::size_t(c)] = 1;
+      const Cluster& cluster = tree.cluster(c);
+      if (cluster.is_leaf()) {
+        counts.nested_basis_entries += d * size(c) * rank(c, d);
+      } else {
+        counts.nested_basis_entries +=
+            (rank(cluster.first_child, d) + rank(cluster.first_child + 1, d)) * rank(c, d);
+        stack.insert(stack.end(), {cluster.first_child, cluster.first_child + 1});
+      }
+    }
+  }
+  for (const BlockIndex& b : split.nested)
+    counts.nested_coupling_entries += rank(b.rows, o) * rank(b.cols, g);
   return counts;
 }
 
@@ -134,41 +224,27 @@ std::uint64_t hmatrix_solver_memory_estimate(Eigen::Index faces, std::uint64_t e
                                              std::uint64_t exterior_runs,
                                              const HMatrixSolverOptions& options,
                                              HMatrixSolverOptions::FarField far_field,
-                                             const HMatrixPartitionCounts* counts,
+                                             const HMatrixPartitionCounts& counts,
                                              std::uint64_t held_bytes) {
   if (far_field == HMatrixSolverOptions::FarField::automatic)
     far_field = options.far_field == HMatrixSolverOptions::FarField::nested
                     ? HMatrixSolverOptions::FarField::nested
                     : HMatrixSolverOptions::FarField::hmatrix;
   const double n = double(faces);
-  // Near field: each leaf meets O(1) leaves densely (measured on a sphere: 30 at η = 1, 20
-  // at η = 2, 16 at η = 4, ≈ 30·η^−0.45) → 2 · that · leaf entries per row; low rank:
-  // ≈ log2(N/leaf) levels × a few blocks × 3·rank per row. Near-field entries take 4 or 8
-  // bytes; factor entries 8 in double precision, 2.5 on average in single precision with
-  // the fixed-point columns (measured: 2.27 on a 100820-face sphere, 2.49 on a remeshed
-  // 121480-face box; AdaptivePrecisionFactors). With the partition's counts the near field
-  // is exact and the factors are counted per block edge.
-  const double leaf = double(options.leaf_size);
-  const double levels = std::max(1.0, std::log2(std::max(n / leaf, 1.0)));
-  const double near_leaves = 30.0 * std::pow(std::max(options.eta, 1.0), -0.45);
+  // The near field exactly, 4 or 8 bytes an entry; factor entries take 8 bytes in double
+  // precision, 2.5 on average in single precision with the fixed-point columns (measured:
+  // 2.27 on a 100820-face sphere, 2.49 on a remeshed 121480-face box;
+  // AdaptivePrecisionFactors), at a bounding rank per block edge entry.
   const double entry_bytes = options.single_precision ? 4.0 : 8.0;
   const double factor_bytes = options.single_precision ? 2.5 : 8.0;
-  const double near = counts ? entry_bytes * counts->near_entries
-                             : n * entry_bytes * 2.0 * near_leaves * leaf;
-  double far = counts ? factor_bytes * kBoundRank * counts->admissible_edges
-                      : n * factor_bytes * levels * 6.0 * 3.0 * kTypicalRank;
-  if (far_field == HMatrixSolverOptions::FarField::nested) {
-    // The blocks below nested_min_cluster as factors, on the levels from the leaves to it;
-    // the H² part: bases of rank ≈ kTypicalNestedRank on both sides (1 + 2 rows per panel, 4
-    // bytes each) and couplings on the levels above (measured per level and face:
-    // kNestedCouplingBytes).
-    const double small_levels =
-        std::clamp(std::log2(double(options.nested_min_cluster) / leaf), 0.0, levels);
-    far = n * (kSmallBlockBytes * small_levels +
-               (levels > small_levels ? 3.0 * 4.0 * kTypicalNestedRank +
-                                            kNestedCouplingBytes * (levels - small_levels)
-                                      : 0.0));
-  }
+  const double near = entry_bytes * counts.near_entries;
+  // Nested: the factored blocks at kSmallBlockSheetRank per sheet, and the H² part's bases,
+  // transfer matrices and couplings as counted, 4 bytes an entry.
+  const double far =
+      far_field == HMatrixSolverOptions::FarField::nested
+          ? factor_bytes * counts.factored_rank_edges +
+                4.0 * (counts.nested_basis_entries + counts.nested_coupling_entries)
+          : factor_bytes * kBoundRank * counts.admissible_edges;
   // Yukawa: written in place, its values in the factors' precision.
   const double yukawa =
       double(options.single_precision
@@ -190,8 +266,7 @@ std::uint64_t hmatrix_solver_memory_estimate(Eigen::Index faces, std::uint64_t e
   // Each thread's cross approximation holds its block's factors in double precision at up
   // to kAcaWorkRank before they are recompressed and narrowed.
   const double threads = double(std::max(1, omp_get_max_threads()));
-  const double aca_work =
-      counts ? threads * 2.0 * 8.0 * kAcaWorkRank * counts->largest_admissible_edge : 0.0;
+  const double aca_work = threads * 2.0 * 8.0 * kAcaWorkRank * counts.largest_admissible_edge;
   return held_bytes + static_cast<std::uint64_t>(
                           kPeakSafetyFactor *
                           (near + far + yukawa + preconditioner + coarse + krylov + aca_work));
@@ -228,14 +303,14 @@ BoundarySolution solve_transmission_hmatrix(const geometry::SurfaceMesh& mesh,
   const double count_seconds = seconds_since(count_start);
   using FarField = HMatrixSolverOptions::FarField;
   BlockPartition partition = partition_blocks(tree, options.eta);
-  const HMatrixPartitionCounts counts = count_partition(tree, partition);
+  const HMatrixPartitionCounts counts = count_partition(tree, partition, panels, options);
   // What the process holds already (meshes, panels, tree, partition) is part of the peak;
   // the budget is the resident size the run may reach (core/memory_watch.hpp).
   const std::uint64_t held = options.held_bytes.value_or(process_memory().resident);
   const auto estimate = [&](const HMatrixSolverOptions& o, FarField far_field) {
     return hmatrix_solver_memory_estimate(n, std::uint64_t(exterior_rows.pairs.sum()),
                                           std::uint64_t(exterior_rows.runs.sum()), o, far_field,
-                                          &counts, held);
+                                          counts, held);
   };
   std::string budget_reason;
   const std::uint64_t budget =
@@ -290,27 +365,9 @@ BoundarySolution solve_transmission_hmatrix(const geometry::SurfaceMesh& mesh,
   // H-matrix, HierarchicalMatrix::diagonal_blocks).
   std::vector<BlockIndex> nested_blocks;
   if (far_field == FarField::nested) {
-    std::vector<int> range(tree.clusters().size(), -1);
-    const std::vector<int> ranges = tree.clusters_up_to(options.preconditioner_block);
-    for (std::size_t r = 0; r < ranges.size(); ++r) {
-      std::vector<int> stack{ranges[r]};
-      while (!stack.empty()) {
-        const int c = stack.back();
-        stack.pop_back();
-        range[std::size_t(c)] = int(r);
-        if (!tree.cluster(c).is_leaf())
-          stack.insert(stack.end(), {tree.cluster(c).first_child, tree.cluster(c).first_child + 1});
-      }
-    }
-    std::vector<BlockIndex> factored;
-    for (const BlockIndex& b : partition.admissible) {
-      const bool large = std::min(tree.cluster(b.rows).size(), tree.cluster(b.cols).size()) >=
-                         options.nested_min_cluster;
-      const bool in_one_block = range[std::size_t(b.rows)] >= 0 &&
-                                range[std::size_t(b.rows)] == range[std::size_t(b.cols)];
-      (large && !in_one_block ? nested_blocks : factored).push_back(b);
-    }
-    partition.admissible = std::move(factored);
+    FarFieldSplit split = split_far_field(tree, partition.admissible, options);
+    nested_blocks = std::move(split.nested);
+    partition.admissible = std::move(split.factored);
   }
   // The generator (tree-ordered panels, their arrays, the touching pairs' table: about
   // 0.65 kB per panel) is released as soon as the blocks are built. The H² part comes first:

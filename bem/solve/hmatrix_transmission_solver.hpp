@@ -19,12 +19,14 @@
 
 #include <cstdint>
 #include <optional>
+#include <vector>
 
 #include "bem/solve/boundary_solution.hpp"
 #include "bem/hmatrix/block_partition.hpp"
 #include "bem/solve/cluster_block_preconditioner.hpp"
 #include "bem/solve/cluster_coarse_space.hpp"
 #include "bem/hmatrix/cluster_tree.hpp"
+#include "bem/quadrature/panel.hpp"
 #include "linalg/gmres.hpp"
 #include "core/progress.hpp"
 #include "geometry/surface_mesh.hpp"
@@ -91,21 +93,52 @@ struct HMatrixSolverOptions {
   std::optional<std::uint64_t> held_bytes;
 };
 
+/// The admissible blocks of the Laplace row split by how `--far-field nested` keeps them:
+/// `nested`, in the H² form, the blocks between clusters of at least
+/// options.nested_min_cluster panels that do not lie inside one preconditioner block (the
+/// preconditioner reads its blocks from the H-matrix, HierarchicalMatrix::diagonal_blocks);
+/// `factored`, the rest, as the H-matrix's own factors.
+struct FarFieldSplit {
+  std::vector<BlockIndex> nested, factored;
+};
+FarFieldSplit split_far_field(const ClusterTree& tree, const std::vector<BlockIndex>& admissible,
+                              const HMatrixSolverOptions& options);
+
+/// Sheets of surface each cluster of `tree` holds (index as tree.clusters()): its panels'
+/// area over the product of its box's two largest extents, in [1, 4]. A patch of one smooth
+/// sheet reads 1 (up to √2 where it runs diagonally through its box), a cluster holding both
+/// skins of a wall thinner than itself 2, a corner of three walls 3. A far-field block's rank
+/// grows with the sheets its clusters hold.
+std::vector<double> cluster_sheets(const ClusterTree& tree, const std::vector<Panel>& panels);
+
 /// What the block partition of the Laplace row holds, counted before anything is assembled
 /// (count_partition): the part of the memory estimate that depends on the geometry (thin
-/// walls have both sides of the wall in many near-field blocks).
+/// walls have both sides of the wall in many near-field blocks, and clusters that hold two
+/// sheets of surface need about twice the rank of one).
 struct HMatrixPartitionCounts {
   double near_entries = 0.0;  ///< Σ over dense blocks of o·|τ| × g·|σ| (o = 1, g = 2)
   double admissible_edges = 0.0;  ///< Σ over admissible blocks of o·|τ| + g·|σ|
   double largest_admissible_edge = 0.0;  ///< the largest o·|τ| + g·|σ| of one block
+  /// With the far field nested (split_far_field): Σ over the factored blocks of their edge
+  /// o·|τ| + g·|σ| times kSmallBlockSheetRank per sheet of the block's clusters, and the H²
+  /// part's entries at rank kNestedSheetRank per sheet of each cluster (capped by its rows;
+  /// sheets: the cluster's own, cluster_sheets, or those the whole near field reads if more):
+  /// the leaves' bases and the transfer matrices on both sides, and one coupling per nested
+  /// block.
+  double factored_rank_edges = 0.0;
+  double nested_basis_entries = 0.0, nested_coupling_entries = 0.0;
 };
 
-/// The counts of `partition` on `tree` for the Laplace row [−K0 | V0].
-HMatrixPartitionCounts count_partition(const ClusterTree& tree, const BlockPartition& partition);
+/// The counts of `partition` on `tree` (built over `panels`) for the Laplace row [−K0 | V0],
+/// the nested split of `options` included.
+HMatrixPartitionCounts count_partition(const ClusterTree& tree, const BlockPartition& partition,
+                                       const std::vector<Panel>& panels,
+                                       const HMatrixSolverOptions& options);
 
 /// Bytes the fast path holds at its peak for `faces` faces, as an upper bound: the near
-/// field (exact, from `counts`; modelled on a sphere without them), the low-rank factors at
-/// kBoundRank per block edge, the exterior matrix of `exterior_pairs` panel pairs in
+/// field (exact, from `counts`), the low-rank factors at
+/// kBoundRank per block edge (nested: the factored blocks and the H² part at their counted
+/// ranks per sheet), the exterior matrix of `exterior_pairs` panel pairs in
 /// `exterior_runs` runs (yukawa_near_field_rows counts them), the preconditioner and coarse
 /// space, the Krylov bases of options.restart steps and the product's work arrays, the
 /// cross approximation's work arrays on every thread, all times kPeakSafetyFactor (measured,
@@ -115,8 +148,8 @@ HMatrixPartitionCounts count_partition(const ClusterTree& tree, const BlockParti
 std::uint64_t hmatrix_solver_memory_estimate(
     Eigen::Index faces, std::uint64_t exterior_pairs, std::uint64_t exterior_runs,
     const HMatrixSolverOptions& options,
-    HMatrixSolverOptions::FarField far_field = HMatrixSolverOptions::FarField::automatic,
-    const HMatrixPartitionCounts* counts = nullptr, std::uint64_t held_bytes = 0);
+    HMatrixSolverOptions::FarField far_field, const HMatrixPartitionCounts& counts,
+    std::uint64_t held_bytes = 0);
 
 /// Bytes the fast path needs at least for `faces` faces, whatever the geometry: the
 /// preconditioner's factors and the Krylov bases at the shortest restart the guard may

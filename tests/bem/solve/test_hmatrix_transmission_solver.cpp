@@ -1,11 +1,15 @@
 // bem/solve/hmatrix_transmission_solver.hpp against the dense reference on the same mesh and
 // against the ball's closed form.
 #include <catch2/catch.hpp>
+#include <algorithm>
 #include <cmath>
 
 #include "bem/solve/dense_transmission_solver.hpp"
 #include "bem/solve/yukawa_near_field.hpp"
 #include "bem/solve/hmatrix_transmission_solver.hpp"
+#include "bem/hmatrix/nested_far_field.hpp"
+#include "bem/kernels/laplace_kernel.hpp"
+#include "bem/operators/galerkin_block_generator.hpp"
 #include "bem/quadrature/panel.hpp"
 #include "bem/evaluate/potential_evaluation.hpp"
 #include "core/errors.hpp"
@@ -127,13 +131,13 @@ TEST_CASE("H-matrix solver: short of memory, the GMRES restart is shortened down
   const auto rows =
       bem::yukawa_near_field_rows(panels, tree, kParameters.kappa, options.aca_tolerance);
   const bem::HMatrixPartitionCounts counts =
-      bem::count_partition(tree, bem::partition_blocks(tree, options.eta));
+      bem::count_partition(tree, bem::partition_blocks(tree, options.eta), panels, options);
   const auto estimate = [&](int restart) {
     bem::HMatrixSolverOptions o = options;
     o.restart = restart;
     return bem::hmatrix_solver_memory_estimate(mesh.num_faces(), std::uint64_t(rows.pairs.sum()),
                                                std::uint64_t(rows.runs.sum()), o, o.far_field,
-                                               &counts, 0);
+                                               counts, 0);
   };
   REQUIRE(estimate(40) < estimate(50));
   options.max_memory_bytes = estimate(40) + 1;  // 60 and 50 do not fit, 40 does
@@ -154,4 +158,53 @@ TEST_CASE("H-matrix solver: GMRES that cannot reach its tolerance is a Numerical
   options.max_iterations = 2;
   options.preconditioner_block = 8;
   CHECK_THROWS_AS(bem::solve_transmission_hmatrix(mesh, kParameters, options), NumericalError);
+}
+
+TEST_CASE("H-matrix solver: the memory estimate's count of the H² part bounds what it holds") {
+  // A ball (one sheet) and a hollow box whose walls are thinner than its clusters (two
+  // sheets), with the H² part reaching down to clusters of 64 panels so that a small mesh has
+  // several levels of it. The count (count_partition) must be at least the entries the
+  // nested far field stores; the ball's clusters read about one sheet, the box's large ones
+  // about two.
+  struct Case {
+    const char* name;
+    geometry::SurfaceMesh mesh;
+    double min_sheets, max_sheets;  ///< the median over clusters of 64–512 panels
+  };
+  const Case cases[] = {
+      {"ball", geometry::make_geodesic_sphere(0.5, 16), 1.0, 1.5},  // 5120 faces
+      {"hollow box", geometry::make_hollow_box(Eigen::Vector3d(0.5, 0.5, 0.5), 0.05, 0.06), 1.7,
+       4.0}};
+  for (const Case& c : cases) {
+    CAPTURE(c.name, c.mesh.num_faces());
+    const auto panels = bem::make_panels(c.mesh);
+    const bem::ClusterTree tree(panels);
+    const std::vector<double> sheets = bem::cluster_sheets(tree, panels);
+    std::vector<double> mid_sized;  // clusters of 64–512 panels, the H² part's levels here
+    for (std::size_t t = 0; t < sheets.size(); ++t)
+      if (tree.cluster(int(t)).size() >= 64 && tree.cluster(int(t)).size() <= 512)
+        mid_sized.push_back(sheets[t]);
+    std::sort(mid_sized.begin(), mid_sized.end());
+    const double median = mid_sized[mid_sized.size() / 2];
+    CAPTURE(median, mid_sized.front(), mid_sized.back());
+    CHECK(median >= c.min_sheets);
+    CHECK(median <= c.max_sheets);
+    bem::HMatrixSolverOptions options;
+    options.nested_min_cluster = 64;
+    const bem::BlockPartition partition = bem::partition_blocks(tree, options.eta);
+    const bem::HMatrixPartitionCounts counts =
+        bem::count_partition(tree, partition, panels, options);
+    const bem::FarFieldSplit split = bem::split_far_field(tree, partition.admissible, options);
+    REQUIRE(split.nested.size() > 10);
+    CHECK(split.nested.size() + split.factored.size() == partition.admissible.size());
+    const bem::GalerkinBlockGenerator<bem::LaplaceKernel> generator(bem::LaplaceKernel{}, panels,
+                                                                    tree.permutation());
+    const bem::NestedFarField far(tree, split.nested, generator);
+    const auto& stats = far.stats();
+    CAPTURE(stats.max_row_rank, stats.max_column_rank, stats.leaf_basis_entries,
+            stats.transfer_entries, stats.coupling_entries, counts.nested_basis_entries,
+            counts.nested_coupling_entries);
+    CHECK(double(stats.leaf_basis_entries + stats.transfer_entries) <= counts.nested_basis_entries);
+    CHECK(double(stats.coupling_entries) <= counts.nested_coupling_entries);
+  }
 }
