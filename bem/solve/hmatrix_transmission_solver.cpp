@@ -176,7 +176,9 @@ HMatrixPartitionCounts count_partition(const ClusterTree& tree, const BlockParti
   // sees both skins where a cluster holds them; the second where a wall's other skin is in
   // the clusters beside it, which the ranks of its blocks see as well (on the 60120-face box
   // the clusters' own read fewer sheets than its ranks show, on a 6168-face box with walls
-  // of half an edge the near field reads fewer: docs/reliability.md, "Estimate and peak").
+  // thinner than an edge the near field reads fewer: docs/reliability.md, "Estimate and
+  // peak"). The solver splits the blocks again when it builds the H² part (split_far_field:
+  // one pass over the admissible blocks, small beside the counting of the exterior pairs).
   std::vector<double> sheets = cluster_sheets(tree, panels);
   const double near_sheets = std::clamp(
       counts.near_entries / (double(tree.root().size()) * kSingleSheetNearEntriesPerLeafPanel *
