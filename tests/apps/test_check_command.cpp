@@ -10,6 +10,7 @@
 #include <string>
 
 #include "tests/apps/bemshape_runner.hpp"
+#include "tests/support/time_bound.hpp"
 
 namespace fs = std::filesystem;
 using namespace bemshape::testing;
@@ -30,7 +31,7 @@ void expect_refused(const std::string& file, const std::string& problem) {
   CHECK(r.exit_code == 2);
   CHECK_THAT(r.first_error_line(), Catch::StartsWith("bemshape: error: " + file + ": "));
   CHECK_THAT(r.first_error_line(), Catch::Contains(problem));
-  CHECK(r.seconds < 1.0);
+  CHECK(r.seconds < bemshape::test::time_bound(1.0));
 }
 
 /// Repaired input: exit 0, usable, the repair named in the report, under a second.
@@ -42,7 +43,7 @@ void expect_repaired(const std::string& file, const std::string& repair) {
   CHECK(r.err.empty());
   CHECK_THAT(r.out, Catch::Contains(repair));
   CHECK_THAT(r.out, Catch::Contains("result: usable"));
-  CHECK(r.seconds < 1.0);
+  CHECK(r.seconds < bemshape::test::time_bound(1.0));
 }
 
 }  // namespace

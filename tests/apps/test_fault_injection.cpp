@@ -13,6 +13,7 @@
 
 #include "geometry/primitive_meshes.hpp"
 #include "tests/apps/bemshape_runner.hpp"
+#include "tests/support/time_bound.hpp"
 
 using namespace bemshape;
 using namespace bemshape::testing;
@@ -132,6 +133,6 @@ TEST_CASE("ulimit -v: a thin-walled H-matrix run whose peak exceeds the limit ex
                                     ": the hierarchical-matrix BEM system of ") &&
                       Catch::Contains("(estimated peak of the process) but only ") &&
                       Catch::Contains(" GB may be used (ulimit -v); use a coarser mesh"));
-  CHECK(seconds < 30.0);  // remeshing and counting; nothing assembled
+  CHECK(seconds < bemshape::test::time_bound(30.0));  // remeshing and counting; nothing assembled
   CHECK_FALSE(fs::exists(out));
 }

@@ -11,6 +11,7 @@
 #include "tests/apps/bemshape_runner.hpp"
 #include "tests/apps/output/file_readers.hpp"
 #include "tests/support/closed_forms.hpp"
+#include "tests/support/time_bound.hpp"
 
 using namespace bemshape;
 using namespace bemshape::testing;
@@ -165,7 +166,7 @@ TEST_CASE("features: an absurd grid is refused before solving, naming a spacing 
   CHECK(r.exit_code == 2);
   CHECK_THAT(r.err, Catch::Contains("--grid 0.001 gives"));
   CHECK_THAT(r.err, Catch::Contains("use --grid 0.01"));  // 1001³ points → 10× coarser
-  CHECK(r.seconds < 2.0);
+  CHECK(r.seconds < bemshape::test::time_bound(2.0));
   const Run both = run_bemshape("features '" + mesh + "' --h0 0.3 --grid 0.1 --points x.csv");
   CHECK(both.exit_code == 2);
   CHECK_THAT(both.err, Catch::Contains("exactly one of --points"));

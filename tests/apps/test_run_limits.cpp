@@ -14,6 +14,7 @@
 #include "geometry/labelled_parts.hpp"
 #include "geometry/primitive_meshes.hpp"
 #include "tests/apps/bemshape_runner.hpp"
+#include "tests/support/time_bound.hpp"
 
 using namespace bemshape;
 using namespace bemshape::testing;
@@ -94,7 +95,7 @@ TEST_CASE("thickness --timeout 1 on a minute-long solve: exit 3 within seconds, 
           "bemshape: error: time limit of 1 s (--timeout) reached; stopped cleanly, no "
           "output file was written or changed; raise --timeout or use a coarser mesh\n");
     // Reading and remeshing take a fraction of a second; the rest is one unit of work.
-    CHECK(r.seconds < 10.0);
+    CHECK(r.seconds < bemshape::test::time_bound(10.0));
     CHECK_FALSE(fs::exists(out));
     CHECK(temporaries_of("timeout_" + solver + ".csv") == 0);
   }
@@ -163,7 +164,7 @@ TEST_CASE("SIGINT during the solve: exit 130, one line, no output, existing outp
   CHECK_THAT(err, Catch::EndsWith("bemshape: error: interrupted by signal 2; stopped cleanly, "
                                   "no output file was written or changed\n"));
   CHECK_THAT(err, Catch::Contains("assemble") && Catch::Contains("stopped"));  // not "done"
-  CHECK(seconds < 10.0);
+  CHECK(seconds < bemshape::test::time_bound(10.0));
   CHECK(slurp(out) == before);
   CHECK(temporaries_of("interrupted.csv") == 0);
 }
@@ -231,7 +232,7 @@ TEST_CASE("hmatrix --max-memory: a part whose estimate exceeds it is refused in 
                  Catch::Contains(" GB (estimated peak of the process) but only 0.25 GB may be "
                                  "used (--max-memory); use a coarser mesh (larger --max-edge)") &&
                  Catch::EndsWith("or a larger --max-memory"));
-  CHECK(r.seconds < 60.0);  // remeshing and counting; nothing assembled
+  CHECK(r.seconds < bemshape::test::time_bound(60.0));  // remeshing and counting; nothing assembled
   CHECK_FALSE(fs::exists(out));
 }
 
@@ -253,7 +254,7 @@ TEST_CASE("the running account stops an assembly whose estimate fitted, exit 2, 
                                ": the hierarchical-matrix BEM system of ") &&
                  Catch::Contains(" GB it may use (BEMSHAPE_TEST_RESIDENT_LIMIT); stopped cleanly, "
                                  "no output file was written or changed; use a coarser mesh"));
-  CHECK(r.seconds < 60.0);
+  CHECK(r.seconds < bemshape::test::time_bound(60.0));
   CHECK(slurp(out) == before);
   CHECK(temporaries_of("account.csv") == 0);
 }
