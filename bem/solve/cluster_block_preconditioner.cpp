@@ -31,7 +31,9 @@ ClusterBlockPreconditioner::ClusterBlockPreconditioner(const ClusterTree& tree,
     for (std::size_t t = first; t < last; ++t) {
       if (cancellation_requested()) continue;  // stopped, or out of memory (below)
       try {
-      const auto [begin, end] = ranges_[t];
+      // Plain variables, not a structured binding: the lambda below captures them, which
+      // clang before 16 refuses for structured bindings.
+      const Eigen::Index begin = ranges_[t].first, end = ranges_[t].second;
       const Eigen::Index s = end - begin;
       Eigen::MatrixXd local(2 * s, 2 * s);
       local.topRows(s) = interior[t - first];
