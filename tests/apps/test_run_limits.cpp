@@ -9,11 +9,13 @@
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <fstream>
+#include <sstream>
 #include <thread>
 
 #include "geometry/labelled_parts.hpp"
 #include "geometry/primitive_meshes.hpp"
 #include "tests/apps/bemshape_runner.hpp"
+#include "tests/support/resident_bound.hpp"
 #include "tests/support/time_bound.hpp"
 
 using namespace bemshape;
@@ -29,7 +31,7 @@ const char* kSlowOptions = " --h0 0.3 --max-edge 0.055";
 /// The memory watch's limit in the running-account test [bytes]: above what the process
 /// holds when the watch starts, below the H-matrix assembly's peak on the slow ball (4280
 /// solver faces; its estimated peak is 0.16 GB).
-constexpr unsigned long long kAccountLimit = 100'000'000;
+constexpr unsigned long long kAccountLimit = bemshape::test::resident_bound_mb(100) * 1'000'000;
 
 std::string slow_ball() {
   static const std::string path = write_mesh(geometry::make_geodesic_sphere(0.5, 8), "slow_ball.stl");
@@ -222,15 +224,19 @@ TEST_CASE("hmatrix --max-memory: a part whose estimate exceeds it is refused in 
   // remeshing (the process then holds about 0.15 GB), before any assembly.
   const std::string mesh = write_mesh(geometry::make_labelled_part("tube").mesh, "tube.stl");
   const std::string out = scratch("tube_refused.csv");
-  const Run r = run_bemshape("thickness '" + mesh +
-                             "' --h0 3 --max-edge 1 --max-memory 250MB --quiet -o '" + out + "'");
+  const unsigned long long limit_mb = bemshape::test::resident_bound_mb(250);
+  const Run r = run_bemshape("thickness '" + mesh + "' --h0 3 --max-edge 1 --max-memory " +
+                             std::to_string(limit_mb) + "MB --quiet -o '" + out + "'");
+  std::ostringstream limit_gb;
+  limit_gb << double(limit_mb) / 1000.0;  // "0.25" as the message prints it
   CAPTURE(r.err, r.seconds);
   CHECK(r.exit_code == 2);
   CHECK_THAT(r.first_error_line(),
              Catch::StartsWith("bemshape: error: " + mesh +
                                ": the hierarchical-matrix BEM system of ") &&
-                 Catch::Contains(" GB (estimated peak of the process) but only 0.25 GB may be "
-                                 "used (--max-memory); use a coarser mesh (larger --max-edge)") &&
+                 Catch::Contains(" GB (estimated peak of the process) but only " + limit_gb.str() +
+                                 " GB may be used (--max-memory); use a coarser mesh (larger "
+                                 "--max-edge)") &&
                  Catch::EndsWith("or a larger --max-memory"));
   CHECK(r.seconds < bemshape::test::time_bound(60.0));  // remeshing and counting; nothing assembled
   CHECK_FALSE(fs::exists(out));
