@@ -35,7 +35,8 @@ ReferenceIntegrals reference_panel_integrals(double kappa, const bem::Panel& pan
   const NearFieldMagnitudes m = near_field_magnitudes(panel, kappa);
   const double floor_factor = rel_tol * 1e-4;
   const Eigen::Vector3d& n = panel.normal;
-  const auto& [a, b, c] = panel.corners;
+  // Plain references, not a structured binding: clang before 16 refuses to capture those.
+  const Eigen::Vector3d &a = panel.corners[0], &b = panel.corners[1], &c = panel.corners[2];
   auto integrate = [&](auto&& f, double magnitude) {
     return adaptive_triangle_integral(f, a, b, c, rel_tol, floor_factor * magnitude).value;
   };
