@@ -3,6 +3,8 @@
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/corefinement.h>
+#include <CGAL/Polygon_mesh_processing/orientation.h>
+#include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/Polygon_mesh_processing/triangulate_faces.h>
 #include <CGAL/Surface_mesh.h>
 #include <string>
@@ -34,6 +36,17 @@ Mesh to_surface_mesh(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& f
   if (!CGAL::is_closed(mesh))
     throw InputError(std::string("Boolean operation: the ") + operand +
                      " operand is not a closed surface");
+  // The rest of the corefinement's precondition. CGAL does not check it in a release
+  // build: an operand that crosses itself (including one with a zero-area face, which CGAL
+  // counts as crossing itself) or whose faces do not bound a volume made the corefinement
+  // read outside its arrays (docs/reliability.md, "Fuzzing").
+  if (PMP::does_self_intersect(mesh))
+    throw InputError(std::string("Boolean operation: the ") + operand +
+                     " operand intersects itself or has a zero-area face");
+  if (!PMP::does_bound_a_volume(mesh))
+    throw InputError(std::string("Boolean operation: the ") + operand +
+                     " operand does not bound a volume (its shells are nested with "
+                     "inconsistent orientations)");
   return mesh;
 }
 

@@ -5,6 +5,7 @@
 #include "core/errors.hpp"
 #include "geometry/constructive_solids.hpp"
 #include "geometry/mesh_preparation.hpp"
+#include "geometry/surface_mesh.hpp"  // concatenated, with_flipped_orientation
 
 using namespace bemshape;
 using namespace bemshape::geometry;
@@ -62,4 +63,29 @@ TEST_CASE("Booleans: a box minus a cylinder and a box plus a box have the volume
   motion.rotate(Eigen::AngleAxisd(0.3, Eigen::Vector3d(1, 2, 3).normalized()));
   motion.translate(Eigen::Vector3d(5, -2, 7));
   CHECK(transformed(joined, motion).signed_volume() == Approx(joined.signed_volume()).epsilon(1e-12));
+}
+
+TEST_CASE("Booleans refuse an operand that crosses itself or does not bound a volume") {
+  // CGAL's corefinement assumes both and read outside its arrays without them
+  // (docs/reliability.md, "Fuzzing"): the operands are checked first.
+  const SurfaceMesh box = make_box_solid({0, 0, 0}, {2, 2, 2});
+  const SurfaceMesh other = make_box_solid({1, 1, 1}, {3, 3, 3});
+  const SurfaceMesh crossing = concatenated(box, other);  // closed, manifold, crosses itself
+  CHECK_THROWS_WITH(mesh_union(box, crossing),
+                    Catch::Contains("second operand intersects itself"));
+  CHECK_THROWS_WITH(mesh_difference(crossing, box),
+                    Catch::Contains("first operand intersects itself"));
+  // Closed, manifold, free of crossings, but a shell inside another faces the same way:
+  // no volume has these faces as its boundary. Facing the other way, the pair bounds a
+  // hollow box.
+  const SurfaceMesh inner = make_box_solid({0.5, 0.5, 0.5}, {1.5, 1.5, 1.5});
+  CHECK_THROWS_WITH(mesh_union(concatenated(box, inner), other),
+                    Catch::Contains("first operand does not bound a volume"));
+  const SurfaceMesh hollow = concatenated(box, with_flipped_orientation(inner));
+  // |box ∪ other| = 15, less the cavity's part outside `other` (1 − 0.5³).
+  CHECK(mesh_union(hollow, other).signed_volume() ==
+        Approx(15.0 - (1.0 - 0.125)).epsilon(1e-10));
+  // Disjoint shells in one operand are fine: the union holds both volumes.
+  const SurfaceMesh apart = concatenated(box, make_box_solid({5, 0, 0}, {6, 1, 1}));
+  CHECK(mesh_union(apart, other).signed_volume() == Approx(8.0 + 1.0 + 8.0 - 1.0).epsilon(1e-10));
 }
