@@ -160,28 +160,20 @@ class Remesher {
     for (unsigned it = 0; it < iterations; ++it) {
       split_long_edges();
       collapse_short_edges();
-      for (int pass = 0; pass < kFlipPasses; ++pass)
-        if (flip_edges(false) == 0)
-          break;
+      flip_until_settled(kFlipPasses, false);
       relax();
       progress((it + 1) / steps);
     }
     // Finish: the last relaxation may have left edges above the split bound and flips that
     // improve a bad triangle; split, then rescue the angles without changing the sizes.
     split_long_edges();
-    for (int pass = 0; pass < 2 * kFlipPasses; ++pass)
-      if (flip_edges(true) == 0)
-        break;
+    flip_until_settled(2 * kFlipPasses, true);
     relax();
-    for (int pass = 0; pass < 2 * kFlipPasses; ++pass)
-      if (flip_edges(true) == 0)
-        break;
+    flip_until_settled(2 * kFlipPasses, true);
     rescue();
     if (in_.max_edge_ratio > 0.0) {
       split_long_edges(false, in_.max_edge_ratio);
-      for (int pass = 0; pass < 2 * kFlipPasses; ++pass)
-        if (flip_edges(true) == 0)
-          break;
+      flip_until_settled(2 * kFlipPasses, true);
       // A midpoint split of a good triangle's longest edge can halve one of its angles;
       // rescue those with collapses that keep every edge within the bound.
       rescue(std::min(kRescueLengthRatio, in_.max_edge_ratio));
@@ -462,6 +454,13 @@ class Remesher {
     return std::max(3, static_cast<int>(std::lround(total / (std::numbers::pi / 3.0))));
   }
 
+  /// Passes of flip_edges until one flips nothing, at most `max_passes`.
+  void flip_until_settled(int max_passes, bool rescue_only) {
+    for (int pass = 0; pass < max_passes; ++pass)
+      if (flip_edges(rescue_only) == 0)
+        return;
+  }
+
   /// One pass over the edges; `rescue_only`: flip only to improve a triangle below the angle
   /// bound. Returns the number of flips.
   long flip_edges(bool rescue_only) {
@@ -734,9 +733,7 @@ class Remesher {
           optimise_vertex(v);
       }
       mesh_.collect_garbage();
-      for (int flip = 0; flip < kFlipPasses; ++flip)
-        if (flip_edges(true) == 0)
-          break;
+      flip_until_settled(kFlipPasses, true);
     }
   }
 
