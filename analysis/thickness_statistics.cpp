@@ -6,6 +6,8 @@
 #include <utility>
 
 #include "core/errors.hpp"
+#include "geometry/face_adjacency.hpp"
+#include "geometry/union_find.hpp"
 
 namespace bemshape::analysis {
 
@@ -81,30 +83,18 @@ std::vector<Region> connected_regions(const geometry::SurfaceMesh& mesh,
                                       Eigen::Vector3d Region::*location) {
   const Eigen::Index nf = mesh.num_faces();
   // Union-find over the selected faces joined through shared edges.
-  std::vector<Eigen::Index> parent(static_cast<std::size_t>(nf));
-  std::iota(parent.begin(), parent.end(), Eigen::Index{0});
-  const auto root = [&parent](Eigen::Index f) {
-    while (parent[static_cast<std::size_t>(f)] != f) {
-      auto& p = parent[static_cast<std::size_t>(f)];
-      p = parent[static_cast<std::size_t>(p)];
-      f = p;
-    }
-    return f;
-  };
-  std::map<std::pair<int, int>, Eigen::Index> first_face_of_edge;
+  const std::vector<std::vector<int>> neighbours = geometry::edge_neighbours(mesh.faces());
+  geometry::UnionFind sets(static_cast<std::size_t>(nf));
   for (Eigen::Index f = 0; f < nf; ++f) {
     if (!selected(thickness(f)))
       continue;
-    for (int k = 0; k < 3; ++k) {
-      const int a = mesh.faces()(f, k), b = mesh.faces()(f, (k + 1) % 3);
-      const auto [it, inserted] =
-          first_face_of_edge.try_emplace({std::min(a, b), std::max(a, b)}, f);
-      if (!inserted)
-        parent[static_cast<std::size_t>(root(f))] = root(it->second);
-    }
+    for (int g : neighbours[static_cast<std::size_t>(f)])
+      if (selected(thickness(g)))
+        sets.unite(static_cast<int>(f), g);
     if (across.size() == nf && across(f) >= 0 && selected(thickness(across(f))))
-      parent[static_cast<std::size_t>(root(f))] = root(across(f));
+      sets.unite(static_cast<int>(f), across(f));
   }
+  const auto root = [&sets](Eigen::Index f) { return Eigen::Index{sets.find(static_cast<int>(f))}; };
   std::map<Eigen::Index, Region> by_root;
   for (Eigen::Index f = 0; f < nf; ++f) {
     if (!selected(thickness(f)))

@@ -15,6 +15,7 @@
 #include "core/cancellation.hpp"
 #include "features/feature_tensor.hpp"
 #include "features/wall_thickness.hpp"
+#include "geometry/face_adjacency.hpp"
 
 namespace bemshape::analysis {
 namespace {
@@ -111,28 +112,14 @@ class MidSurfaceSearch {
 /// values, sweep by sweep until none is left (or nothing changes: a shell with no value).
 void fill_from_neighbours(const geometry::SurfaceMesh& mesh, Eigen::VectorXd& values) {
   const Eigen::Index nf = mesh.num_faces();
-  // Edge neighbours from the sorted list of directed edges.
-  std::vector<std::array<Eigen::Index, 3>> edges;  // (min vertex, max vertex, face)
-  edges.reserve(static_cast<std::size_t>(3 * nf));
-  for (Eigen::Index f = 0; f < nf; ++f)
-    for (int k = 0; k < 3; ++k) {
-      const Eigen::Index a = mesh.faces()(f, k), b = mesh.faces()(f, (k + 1) % 3);
-      edges.push_back({std::min(a, b), std::max(a, b), f});
-    }
-  std::sort(edges.begin(), edges.end());
-  std::vector<std::vector<Eigen::Index>> neighbours(static_cast<std::size_t>(nf));
-  for (std::size_t i = 0; i + 1 < edges.size(); ++i)
-    if (edges[i][0] == edges[i + 1][0] && edges[i][1] == edges[i + 1][1]) {
-      neighbours[static_cast<std::size_t>(edges[i][2])].push_back(edges[i + 1][2]);
-      neighbours[static_cast<std::size_t>(edges[i + 1][2])].push_back(edges[i][2]);
-    }
+  const std::vector<std::vector<int>> neighbours = geometry::edge_neighbours(mesh.faces());
   for (bool changed = true; changed;) {
     changed = false;
     Eigen::VectorXd next = values;
     for (Eigen::Index f = 0; f < nf; ++f) {
       if (std::isfinite(values(f))) continue;
       double sum = 0.0, weight = 0.0;
-      for (Eigen::Index g : neighbours[static_cast<std::size_t>(f)])
+      for (int g : neighbours[static_cast<std::size_t>(f)])
         if (std::isfinite(values(g))) {
           sum += mesh.face_areas()(g) * values(g);
           weight += mesh.face_areas()(g);
