@@ -4,6 +4,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <optional>
 #include <string>
@@ -13,6 +14,18 @@
 
 namespace bemshape::geometry::detail {
 namespace {
+
+/// An integer-valued index as decimal digits. Not through int64: a 64-bit unsigned index
+/// in the file can exceed its range (UBSan reported the conversion; docs/reliability.md,
+/// "Fuzzing").
+std::string integer_text(double value) {
+  char text[32];
+  if (std::abs(value) >= 1e21)
+    std::snprintf(text, sizeof text, "%.17g", value);
+  else
+    std::snprintf(text, sizeof text, "%.0f", value);
+  return text;
+}
 
 namespace fs = std::filesystem;
 
@@ -358,7 +371,7 @@ PolygonSoup read_body(const fs::path& path, const Header& header, const Layout& 
           // in every file we know, and a face before its vertices is refused here.
           if (value < 0 || value >= static_cast<double>(num_vertices))
             fail(path, "face " + std::to_string(item) + " refers to vertex " +
-                           std::to_string(static_cast<std::int64_t>(value)) + " but the file has " +
+                           integer_text(value) + " but the file has " +
                            std::to_string(num_vertices) + " vertices before it (" + values.where() +
                            "): the file is corrupt");
           soup.corners.push_back(static_cast<std::size_t>(value));
