@@ -8,7 +8,7 @@
 namespace bemshape::geometry {
 
 /// neighbours[f]: the faces other than f that have an edge of f as one of theirs, each
-/// once, in no particular order. Three per face on a closed manifold mesh; more across a
+/// once, in increasing order. Three per face on a closed manifold mesh; more across a
 /// non-manifold edge, fewer at a border. O(F log F).
 std::vector<std::vector<int>> edge_neighbours(const Eigen::MatrixX3i& faces);
 

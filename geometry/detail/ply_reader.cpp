@@ -4,28 +4,16 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
-#include <cstdio>
 #include <cstring>
 #include <optional>
 #include <string>
 
+#include "core/number_text.hpp"
 #include "geometry/detail/polygon_file_readers.hpp"
 #include "geometry/detail/text_scan.hpp"
 
 namespace bemshape::geometry::detail {
 namespace {
-
-/// An integer-valued index as decimal digits. Not through int64: a 64-bit unsigned index
-/// in the file can exceed its range (UBSan reported the conversion; docs/reliability.md,
-/// "Fuzzing").
-std::string integer_text(double value) {
-  char text[32];
-  if (std::abs(value) >= 1e21)
-    std::snprintf(text, sizeof text, "%.17g", value);
-  else
-    std::snprintf(text, sizeof text, "%.0f", value);
-  return text;
-}
 
 namespace fs = std::filesystem;
 
@@ -371,7 +359,9 @@ PolygonSoup read_body(const fs::path& path, const Header& header, const Layout& 
           // in every file we know, and a face before its vertices is refused here.
           if (value < 0 || value >= static_cast<double>(num_vertices))
             fail(path, "face " + std::to_string(item) + " refers to vertex " +
-                           integer_text(value) + " but the file has " +
+                           // 20 digits: any 64-bit index in full, never through int64,
+                           // which a 64-bit unsigned index can exceed (UBSan).
+                           number_text(value, 20) + " but the file has " +
                            std::to_string(num_vertices) + " vertices before it (" + values.where() +
                            "): the file is corrupt");
           soup.corners.push_back(static_cast<std::size_t>(value));
