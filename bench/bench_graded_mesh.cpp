@@ -3,7 +3,7 @@
 //
 //   bench_graded_mesh [OPTIONS] [PART ...]
 //
-// PART is a labelled part (geometry/labelled_parts.hpp; h0 = 0.9 × its nominal wall, read as
+// PART is a labelled part (tests/support/labelled_parts.hpp; h0 = 0.9 × its nominal wall, read as
 // its STL export would be: welded, validated, repaired) or
 // FILE:H0 (a mesh file and its h0). Without parts: every labelled part and
 // tests/data/meshes/plate_holes.STL at h0 = 0.9 × 12.7.
@@ -35,7 +35,7 @@
 #include "geometry/closest_point.hpp"
 #include "geometry/graded_remeshing.hpp"
 #include "geometry/isotropic_remeshing.hpp"
-#include "geometry/labelled_parts.hpp"
+#include "tests/support/labelled_parts.hpp"
 #include "geometry/mesh_preparation.hpp"
 
 namespace {
@@ -111,7 +111,7 @@ void print_line(const Part& part, const std::string& kind, const geometry::Surfa
 
 /// A labelled part as the program would read its STL export: welded, validated, repaired.
 Part labelled_part(const std::string& name) {
-  const geometry::LabelledPart part = geometry::make_labelled_part(name);
+  const testing::LabelledPart part = testing::make_labelled_part(name);
   geometry::TriangleSoup soup;
   soup.vertices = part.mesh.vertices();
   soup.faces = part.mesh.faces();
@@ -162,7 +162,7 @@ int main(int argc, char** argv) {
     }
   }
   if (parts.empty()) {
-    for (const std::string& name : geometry::labelled_part_names())
+    for (const std::string& name : testing::labelled_part_names())
       parts.push_back(labelled_part(name));
     parts.push_back({"plate_holes.STL",
                      geometry::prepare_mesh_file(BEMSHAPE_TEST_DATA_DIR "/meshes/plate_holes.STL").mesh,

@@ -4,7 +4,7 @@
 //
 //   bench_thickness_tools [--threads N] [PART ...]
 //
-// PART is a labelled part (geometry/labelled_parts.hpp; h0 = 0.9 × its nominal wall) or
+// PART is a labelled part (tests/support/labelled_parts.hpp; h0 = 0.9 × its nominal wall) or
 // plate_holes (tests/data/meshes/plate_holes.STL, h0 = 0.9 × 12.7). Without parts: every
 // labelled part but the large tray, and plate_holes. Each part is read as its STL export
 // would be (welded, validated, repaired) and given to every tool as it is (the peers on the
@@ -46,7 +46,7 @@
 #include "analysis/input_mesh.hpp"
 #include "analysis/measure_thickness.hpp"
 #include "core/errors.hpp"
-#include "geometry/labelled_parts.hpp"
+#include "tests/support/labelled_parts.hpp"
 #include "geometry/mesh_preparation.hpp"
 
 using namespace bemshape;
@@ -67,7 +67,7 @@ struct Part {
   geometry::SurfaceMesh mesh;
   double h0 = 0.0;
   /// Label of a face from its centroid and outward normal.
-  std::function<geometry::WallLabel(const Eigen::Vector3d&, const Eigen::Vector3d&)> label;
+  std::function<testing::WallLabel(const Eigen::Vector3d&, const Eigen::Vector3d&)> label;
 };
 
 /// Readings of one tool on its own faces, against the design.
@@ -106,18 +106,18 @@ void score(const Part& part, const geometry::SurfaceMesh& mesh, const Eigen::Vec
   std::vector<std::pair<double, double>> nominal;
   double thin_min = std::numeric_limits<double>::infinity(), nominal_area = 0.0, low_area = 0.0;
   for (Eigen::Index f = 0; f < mesh.num_faces(); ++f) {
-    const geometry::WallLabel label =
+    const testing::WallLabel label =
         part.label(mesh.face_centroids().row(f).transpose(), mesh.face_normals().row(f).transpose());
     if (!std::isfinite(thickness(f)) || !(label.thickness > 0.0))
       continue;
     const double ratio = thickness(f) / label.thickness;
-    if (label.role == geometry::WallRole::nominal) {
+    if (label.role == testing::WallRole::nominal) {
       nominal.emplace_back(ratio, mesh.face_areas()(f));
       nominal_area += mesh.face_areas()(f);
       if (ratio < 0.9)
         low_area += mesh.face_areas()(f);
     }
-    else if (label.role == geometry::WallRole::thin_feature)
+    else if (label.role == testing::WallRole::thin_feature)
       thin_min = std::min(thin_min, ratio);
   }
   r.faces = static_cast<long>(mesh.num_faces());
@@ -201,7 +201,7 @@ Reading run_bemshape(const Part& part) {
 }
 
 Part labelled(const std::string& name) {
-  geometry::LabelledPart p = geometry::make_labelled_part(name);
+  testing::LabelledPart p = testing::make_labelled_part(name);
   const double h0 = 0.9 * p.nominal_wall;
   return {name, analysis::prepare_triangles(p.mesh.vertices(), p.mesh.faces(), name).mesh, h0,
           p.label};
@@ -214,9 +214,9 @@ Part plate_holes() {
   Eigen::Index axis = 0;
   const double thickness = box.extent().minCoeff(&axis);
   auto label = [axis, thickness](const Eigen::Vector3d&, const Eigen::Vector3d& n) {
-    geometry::WallLabel l;
+    testing::WallLabel l;
     if (std::abs(n(axis)) > 0.999) {
-      l.role = geometry::WallRole::nominal;
+      l.role = testing::WallRole::nominal;
       l.thickness = thickness;
     } else {
       l.thickness = NAN;
@@ -250,7 +250,7 @@ int main(int argc, char** argv) {
     }
   }
   if (names.empty()) {
-    names = geometry::labelled_part_names();
+    names = testing::labelled_part_names();
     names.erase(std::remove(names.begin(), names.end(), "large-tray"), names.end());
     names.push_back("plate_holes");
   }

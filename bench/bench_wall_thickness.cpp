@@ -1,4 +1,4 @@
-// The wall thickness of the labelled parts (geometry/labelled_parts.hpp) against their design,
+// The wall thickness of the labelled parts (tests/support/labelled_parts.hpp) against their design,
 // scored the way a designer judges a minimum-wall-thickness check: the table of
 // docs/validation.md, "Wall thickness on parts with known walls".
 //
@@ -38,7 +38,7 @@
 #include "analysis/input_mesh.hpp"
 #include "analysis/thickness_statistics.hpp"
 #include "core/errors.hpp"
-#include "geometry/labelled_parts.hpp"
+#include "tests/support/labelled_parts.hpp"
 
 using namespace bemshape;
 
@@ -65,7 +65,7 @@ double quantile(const std::vector<double>& ratios, const std::vector<double>& ar
 }
 
 void run_part(const std::string& name, const Options& options) {
-  const geometry::LabelledPart part = geometry::make_labelled_part(name);
+  const testing::LabelledPart part = testing::make_labelled_part(name);
   const double t = part.nominal_wall;
   const geometry::PreparedMesh input = analysis::prepare_triangles(
       part.mesh.vertices(), part.mesh.faces(), name);
@@ -85,17 +85,17 @@ void run_part(const std::string& name, const Options& options) {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   const geometry::SurfaceMesh& mesh = result.boundary.solver_mesh;
-  const std::vector<geometry::WallLabel> labels = part.label_faces(mesh);
+  const std::vector<testing::WallLabel> labels = part.label_faces(mesh);
   std::vector<double> nominal, nominal_area, rim, rim_area;
   double low_area = 0.0, total_nominal = 0.0, flagged_at_11 = 0.0, worst_t = 0.0;
   Eigen::Index worst_low = -1;  // the nominal face read lowest against its wall
   std::vector<double> feature_area(part.features.size(), 0.0),
       feature_flagged(part.features.size(), 0.0);
   for (Eigen::Index f = 0; f < mesh.num_faces(); ++f) {
-    const geometry::WallLabel& l = labels[std::size_t(f)];
+    const testing::WallLabel& l = labels[std::size_t(f)];
     const double area = mesh.face_areas()(f), value = result.thickness(f);
     switch (l.role) {
-      case geometry::WallRole::nominal:
+      case testing::WallRole::nominal:
         nominal.push_back(value / l.thickness);
         nominal_area.push_back(area);
         total_nominal += area;
@@ -109,11 +109,11 @@ void run_part(const std::string& name, const Options& options) {
         if (value < 1.1 * l.thickness)
           flagged_at_11 += area;
         break;
-      case geometry::WallRole::rim:
+      case testing::WallRole::rim:
         rim.push_back(value / l.thickness);
         rim_area.push_back(area);
         break;
-      case geometry::WallRole::thin_feature:
+      case testing::WallRole::thin_feature:
         feature_area[std::size_t(l.feature)] += area;
         if (value < 0.9 * t)
           feature_flagged[std::size_t(l.feature)] += area;
@@ -148,7 +148,7 @@ void run_part(const std::string& name, const Options& options) {
         std::fprintf(out, "%g,%g,%g,%g,%g,%g,%s,%g,%g,%g,%g,%g,%g\n", mesh.face_centroids()(f, 0),
                      mesh.face_centroids()(f, 1), mesh.face_centroids()(f, 2),
                      mesh.face_normals()(f, 0), mesh.face_normals()(f, 1),
-                     mesh.face_normals()(f, 2), geometry::to_string(l.role), l.thickness,
+                     mesh.face_normals()(f, 2), testing::to_string(l.role), l.thickness,
                      result.thickness(f), wall ? w.mid_thickness(f) : NAN,
                      wall ? w.depth(f) : NAN, wall ? w.rim_indicator(f) : NAN,
                      wall ? w.pair_thickness(f) : NAN);
@@ -162,16 +162,16 @@ void run_part(const std::string& name, const Options& options) {
     Eigen::Index at = r.face_indices.empty() ? -1 : r.face_indices.front();
     for (const int f : r.face_indices)
       if (result.thickness(f) < result.thickness(at)) at = f;
-    const geometry::WallLabel& l = labels[std::size_t(at)];
+    const testing::WallLabel& l = labels[std::size_t(at)];
     std::printf("    region  min %.3f at (%.2f, %.2f, %.2f) on a %s face (t %g), area %.2f, "
                 "%zu faces\n",
                 r.minimum, r.min_location.x(), r.min_location.y(), r.min_location.z(),
-                geometry::to_string(l.role), l.thickness, r.area,
+                testing::to_string(l.role), l.thickness, r.area,
                 r.face_indices.size());
   }
   for (std::size_t k = 0; k < part.features.size(); ++k) {
-    const geometry::PartFeature& feature = part.features[k];
-    if (feature.role == geometry::WallRole::thin_feature) {
+    const testing::PartFeature& feature = part.features[k];
+    if (feature.role == testing::WallRole::thin_feature) {
       // The region holding most of the feature's area: its share of the feature, where its
       // minimum and centroid are.
       const analysis::ThinRegion* best = nullptr;
@@ -179,7 +179,7 @@ void run_part(const std::string& name, const Options& options) {
       for (const analysis::ThinRegion& r : result.regions) {
         double area = 0.0;
         for (const int f : r.face_indices)
-          if (labels[std::size_t(f)].role == geometry::WallRole::thin_feature &&
+          if (labels[std::size_t(f)].role == testing::WallRole::thin_feature &&
               labels[std::size_t(f)].feature == int(k))
             area += mesh.face_areas()(f);
         if (area > best_area) {
@@ -233,7 +233,7 @@ int main(int argc, char** argv) {
     }
   }
   if (options.parts.empty())
-    for (const std::string& name : geometry::labelled_part_names())
+    for (const std::string& name : testing::labelled_part_names())
       if (name != "large-tray")  // millions of faces at the uniform default mesh
         options.parts.push_back(name);
   std::printf("bench_wall_thickness: measure %s, h0 = --min-thickness = 0.9 t, %d threads\n",

@@ -2,7 +2,7 @@
 """The memory guard's estimate against the measured peak, over the benchmark set.
 
 Runs `bemshape thickness` on spheres, thin-walled hollow boxes, the labelled parts
-(geometry/labelled_parts.hpp, `make_test_mesh part NAME`), the bundled plate with holes and
+(tests/support/labelled_parts.hpp, `make_test_mesh part NAME`), the bundled plate with holes and
 the large tray, one after the other, and prints for each run the solver faces, the solver,
 the guard's bound on the process's resident size (the report's memory.estimate_mb, checked
 before anything is assembled) and the peak resident size (memory.peak_mb, VmHWM at the end

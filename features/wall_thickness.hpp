@@ -69,7 +69,7 @@ inline double mid_surface_thickness(const Eigen::Vector3d& eigenvalues, double h
 }
 
 /// Rim indicators up to kRimFrom take h_mid alone, from kRimFull on h_twice alone, linearly
-/// in between. Measured on the labelled parts (geometry/labelled_parts.hpp): within a wall,
+/// in between. Measured on the labelled parts (tests/support/labelled_parts.hpp): within a wall,
 /// a tube or a rod the indicator stays below 0.05; at a quarter of the wall from a rim it is
 /// 0.5–1, at half a wall 0.3, and h_mid is already within 1 % of the wall from where it
 /// drops below 0.1.

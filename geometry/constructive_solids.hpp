@@ -1,6 +1,6 @@
 #pragma once
 // Solids built the way CAD parts are: prisms (extruded polygons, boxes, faceted cylinders)
-// combined by union and difference. The labelled parts (labelled_parts.hpp), the tests and
+// combined by union and difference. The labelled parts (tests/support/labelled_parts.hpp), the tests and
 // the benchmarks build their parts with known walls from these.
 //
 // Every mesh here is closed and outward-oriented; lengths in model units. The Booleans are

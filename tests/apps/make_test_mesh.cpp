@@ -7,13 +7,13 @@
 //   make_test_mesh hollow-box SIDE WALL MAX_EDGE OUT.stl (a cube of side SIDE with a cubic
 //                                                          cavity: walls WALL thick)
 //   make_test_mesh cylinder RADIUS LENGTH MAX_EDGE OUT.stl
-//   make_test_mesh part NAME OUT.stl [CIRCLE_SEGMENTS]     (geometry/labelled_parts.hpp)
+//   make_test_mesh part NAME OUT.stl [CIRCLE_SEGMENTS]     (tests/support/labelled_parts.hpp)
 #include <cstdlib>
 #include <iostream>
 #include <string>
 
 #include "apps/output/stl_writer.hpp"
-#include "geometry/labelled_parts.hpp"
+#include "tests/support/labelled_parts.hpp"
 #include "geometry/primitive_meshes.hpp"
 
 int main(int argc, char** argv) {
@@ -42,7 +42,7 @@ int main(int argc, char** argv) {
     mesh = geometry::make_cylinder(arg(2), arg(3), arg(4));
     out = argv[5];
   } else if (kind == "part" && (argc == 4 || argc == 5)) {
-    mesh = geometry::make_labelled_part(argv[2], argc == 5 ? std::atoi(argv[4]) : 64).mesh;
+    mesh = testing::make_labelled_part(argv[2], argc == 5 ? std::atoi(argv[4]) : 64).mesh;
     out = argv[3];
   } else {
     std::cerr

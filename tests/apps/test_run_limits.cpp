@@ -11,7 +11,7 @@
 #include <fstream>
 #include <thread>
 
-#include "geometry/labelled_parts.hpp"
+#include "tests/support/labelled_parts.hpp"
 #include "geometry/primitive_meshes.hpp"
 #include "tests/apps/bemshape_runner.hpp"
 #include "tests/support/resident_bound.hpp"
@@ -223,7 +223,7 @@ TEST_CASE("hmatrix --max-memory: a part whose estimate exceeds it is refused in 
   // remeshing, before any assembly. The process then holds about 0.15 GB, and up to 0.5 GB in
   // the sanitizer build (whose allocator keeps freed memory for a while): 1 GB lets the
   // remeshing finish in both.
-  const std::string mesh = write_mesh(geometry::make_labelled_part("tube").mesh, "tube.stl");
+  const std::string mesh = write_mesh(testing::make_labelled_part("tube").mesh, "tube.stl");
   const std::string out = scratch("tube_refused.csv");
   const Run r = run_bemshape("thickness '" + mesh +
                              "' --h0 3 --max-edge 1 --max-memory 1G --quiet -o '" + out + "'");

@@ -9,7 +9,7 @@
 #include "geometry/constructive_solids.hpp"
 #include "geometry/graded_remeshing.hpp"
 #include "geometry/isotropic_remeshing.hpp"
-#include "geometry/labelled_parts.hpp"
+#include "tests/support/labelled_parts.hpp"
 #include "geometry/mesh_preparation.hpp"
 #include "geometry/mesh_validation.hpp"
 #include "geometry/primitive_meshes.hpp"
@@ -17,6 +17,7 @@
 
 using namespace bemshape;
 using namespace bemshape::geometry;
+using namespace bemshape::testing;
 
 namespace {
 

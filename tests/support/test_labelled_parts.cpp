@@ -4,11 +4,12 @@
 #include <numbers>
 
 #include "core/errors.hpp"
-#include "geometry/labelled_parts.hpp"
+#include "tests/support/labelled_parts.hpp"
 #include "geometry/mesh_preparation.hpp"
 
 using namespace bemshape;
 using namespace bemshape::geometry;
+using namespace bemshape::testing;
 
 namespace {
 double polygon_area(double r, int segments) {

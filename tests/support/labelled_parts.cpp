@@ -1,4 +1,4 @@
-#include "geometry/labelled_parts.hpp"
+#include "tests/support/labelled_parts.hpp"
 
 #include <array>
 #include <cmath>
@@ -8,7 +8,9 @@
 #include "core/errors.hpp"
 #include "geometry/constructive_solids.hpp"
 
-namespace bemshape::geometry {
+namespace bemshape::testing {
+
+using namespace bemshape::geometry;
 namespace {
 
 /// Positions on a labelled surface are exact up to rounding and remeshing: points within
@@ -348,4 +350,4 @@ LabelledPart make_labelled_part(const std::string& name, int circle_segments) {
   throw InputError("unknown labelled part '" + name + "'; known: " + names);
 }
 
-}  // namespace bemshape::geometry
+}  // namespace bemshape::testing

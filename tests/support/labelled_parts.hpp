@@ -30,7 +30,7 @@
 
 #include "geometry/surface_mesh.hpp"
 
-namespace bemshape::geometry {
+namespace bemshape::testing {
 
 enum class WallRole { nominal, rim, thin_feature, thick_feature, junction };
 
@@ -50,13 +50,13 @@ struct PartFeature {
   std::string name;
   WallRole role = WallRole::thin_feature;
   double thickness = 0.0;  ///< design thickness [mm]
-  BoundingBox box;         ///< the feature's material lies inside this box [mm]
+  geometry::BoundingBox box;         ///< the feature's material lies inside this box [mm]
 };
 
 struct LabelledPart {
   std::string name;
   std::string description;
-  SurfaceMesh mesh;             ///< closed, outward-oriented
+  geometry::SurfaceMesh mesh;             ///< closed, outward-oriented
   double nominal_wall = 0.0;    ///< the part's nominal wall [mm]
   std::vector<PartFeature> features;
   /// Label of the surface point `x` with outward normal `n` (unit) [mm].
@@ -64,7 +64,7 @@ struct LabelledPart {
 
   /// Labels of every face of `surface` (any triangulation of this part) from its centroid and
   /// normal.
-  std::vector<WallLabel> label_faces(const SurfaceMesh& surface) const;
+  std::vector<WallLabel> label_faces(const geometry::SurfaceMesh& surface) const;
 };
 
 /// Names accepted by make_labelled_part, in a fixed order.
@@ -75,4 +75,4 @@ std::vector<std::string> labelled_part_names();
 /// default 64 is a typical CAD export's tessellation of these sizes.
 LabelledPart make_labelled_part(const std::string& name, int circle_segments = 64);
 
-}  // namespace bemshape::geometry
+}  // namespace bemshape::testing
