@@ -5,6 +5,8 @@
 #include <random>
 
 #include "geometry/isotropic_remeshing.hpp"
+#include "geometry/mesh_io.hpp"
+#include "geometry/mesh_preparation.hpp"
 
 namespace bemshape::testing {
 
@@ -23,7 +25,13 @@ geometry::SurfaceMesh refined_to_faces(const geometry::SurfaceMesh& mesh, long m
 
 LabelledPart fine_export(const std::string& name, long min_faces) {
   LabelledPart part = make_labelled_part(name, kFineExportSegments);
-  part.mesh = refined_to_faces(part.mesh, min_faces);
+  // Welded and validated as a file of the part would be before it is refined.
+  geometry::TriangleSoup soup;
+  soup.vertices = part.mesh.vertices();
+  soup.faces = part.mesh.faces();
+  soup.format = "triangle arrays";
+  soup.corners_in_file = static_cast<std::size_t>(3 * soup.faces.rows());
+  part.mesh = refined_to_faces(geometry::prepare_triangle_soup(soup, name).mesh, min_faces);
   return part;
 }
 
