@@ -27,6 +27,21 @@ void validate(const SolveOptions& options) {
                      number_text(options.solver.tolerance, 3));
 }
 
+geometry::GradedMeshParameters wall_reading_mesh_parameters(double h0, double a,
+                                                            double sharp_angle_degrees) {
+  geometry::GradedMeshParameters p;
+  p.h0 = h0;
+  p.fine_edge = bem::TransmissionParameters::from_shape(h0, a).default_max_edge();
+  p.max_edge_ratio = kWallMeshMaxEdgeRatio;
+  p.wall_thickness_ratio = kWallMeshThicknessRatio;
+  p.refine_creases = false;
+  p.min_size_ratio = kWallMeshMinSizeRatio;
+  p.min_chord_ratio = 0.0;
+  p.chord_thickness_ratio = kWallMeshChordRatio;
+  p.crease_angle_degrees = sharp_angle_degrees;
+  return p;
+}
+
 BoundarySolve solve_boundary(const geometry::PreparedMesh& input, const SolveOptions& options,
                              StageTimes& times, const ProgressCallback& progress) {
   validate(options);
@@ -36,9 +51,16 @@ BoundarySolve solve_boundary(const geometry::PreparedMesh& input, const SolveOpt
   const std::string& source = input.report.source;
   const auto parameters = bem::TransmissionParameters::from_shape(options.h0, options.a);
   BoundarySolve run;
+  const bool graded = !options.max_edge && options.mesh_rule == SolverMeshRule::wall_reading;
+  const geometry::GradedMeshParameters graded_parameters =
+      wall_reading_mesh_parameters(options.h0, options.a, options.sharp_angle_degrees);
   if (options.max_edge) {
     run.max_edge = *options.max_edge;
     run.max_edge_rule = "--max-edge";
+  } else if (graded) {
+    run.max_edge = graded_parameters.max_edge_ratio * options.h0;
+    run.max_edge_rule = "graded for the wall reading: about the local wall, at most " +
+                        number_text(graded_parameters.max_edge_ratio, 3) + "*h0";
   } else {
     run.max_edge = parameters.default_max_edge();
     run.max_edge_rule = "default rule 3/kappa = 1.5*a*h0";
@@ -70,6 +92,11 @@ BoundarySolve solve_boundary(const geometry::PreparedMesh& input, const SolveOpt
   // after some work, and a display ends the previous stage when a new name arrives.
   report_progress(progress, "remeshing", 0.0);
   run.solver_mesh = times.time("refine", [&] {
+    if (graded) {
+      geometry::GradedMesh mesh = geometry::graded_solver_mesh(input.mesh, graded_parameters, progress);
+      run.graded = mesh.report;
+      return std::move(mesh.mesh);
+    }
     geometry::RemeshingOptions remeshing;
     remeshing.sharp_angle_degrees = options.sharp_angle_degrees;
     return geometry::refine_to_edge_length(input.mesh, run.max_edge, remeshing, progress);

@@ -6,8 +6,11 @@
 // bem/solve/hmatrix_transmission_solver.hpp).
 //
 // Element size: the solver mesh's edges are about `max_edge` (none longer than 1.3 times
-// it, geometry::RemeshingOptions::max_edge_ratio) if given, else the default rule
-// TransmissionParameters::default_max_edge() = 3/κ = 1.5·a·h0 [model units].
+// it, geometry::RemeshingOptions::max_edge_ratio) if given, else the default of what is read
+// (SolverMeshRule): for values on the surface (the sphere and paper measures, the features at
+// points) the uniform TransmissionParameters::default_max_edge() = 3/κ = 1.5·a·h0 [model
+// units]; for the wall reading a graded mesh whose elements follow the walls
+// (wall_reading_mesh_parameters, docs/theory.md "Element size").
 
 #include <cstdint>
 #include <optional>
@@ -45,11 +48,43 @@ struct SolverChoice {
 /// 1300 faces; the dense path's exact solve is kept a little beyond.
 inline constexpr long kAutoDenseFaces = 2000;
 
+/// What the default solver mesh (no max_edge) is made for.
+enum class SolverMeshRule {
+  /// Values of s and ∇s on the surface (the sphere and paper measures, `features`, `compare`):
+  /// uniform elements of 3/κ, the layer of width 1/κ outside the surface resolved.
+  surface_values,
+  /// The wall reading at the walls' mid-surfaces, half a wall deep: a graded mesh with
+  /// elements about as long as the local wall (geometry::graded_solver_mesh with
+  /// wall_reading_mesh_parameters), creases kept but not refined, tessellated round walls
+  /// crossed.
+  wall_reading
+};
+
+/// Elements of the wall-reading mesh are at most this many times the local wall thickness
+/// (geometry::GradedMeshParameters::wall_thickness_ratio, c_t). TODO-measured.
+inline constexpr double kWallMeshThicknessRatio = 1.0;
+/// ... and at most this many times h0 anywhere (h_max / h0). TODO-measured.
+inline constexpr double kWallMeshMaxEdgeRatio = 2.0;
+
+/// Tessellated round walls are smoothed (crossed by the elements) where a chord sags by at
+/// most this fraction of the wall under it (geometry::GradedMeshParameters::
+/// chord_thickness_ratio). TODO-measured.
+inline constexpr double kWallMeshChordRatio = 0.01;
+/// No element is asked to be smaller than this times h_f = 1.5·a·h0, whatever creases are
+/// close (GradedMeshParameters::min_size_ratio). TODO-measured.
+inline constexpr double kWallMeshMinSizeRatio = 0.5;
+
+/// The graded mesh of the wall reading for h0 and a (SolverMeshRule::wall_reading).
+geometry::GradedMeshParameters wall_reading_mesh_parameters(double h0, double a,
+                                                            double sharp_angle_degrees);
+
 /// The PDE's parameters, the solver mesh and the solver: what every job that solves takes.
 struct SolveOptions {
   double h0 = 0.0;                 ///< characteristic length [model units], > 0
   double a = 0.2;                  ///< dimensionless diffusion, > 0
   std::optional<double> max_edge;  ///< solver mesh edge [model units]; default rule if empty
+  /// The default solver mesh when max_edge is empty.
+  SolverMeshRule mesh_rule = SolverMeshRule::surface_values;
   /// Dihedral angle above which an edge is kept as a crease by the remesher [degrees], in
   /// [0, 180) (geometry::RemeshingOptions::sharp_angle_degrees).
   double sharp_angle_degrees = geometry::RemeshingOptions{}.sharp_angle_degrees;
@@ -64,8 +99,10 @@ void validate(const SolveOptions& options);
 /// The solver mesh and the boundary data on it.
 struct BoundarySolve {
   geometry::SurfaceMesh solver_mesh;  ///< refined mesh the BEM runs on
-  double max_edge = 0.0;              ///< target edge used [model units]
-  std::string max_edge_rule;          ///< "--max-edge" or "default rule 3/kappa = 1.5*a*h0"
+  double max_edge = 0.0;              ///< target edge used [model units]; the graded mesh's h_max
+  std::string max_edge_rule;          ///< "--max-edge", "default rule 3/kappa = 1.5*a*h0" or the graded rule
+  /// The graded mesh's report (SolverMeshRule::wall_reading without max_edge), else empty.
+  std::optional<geometry::GradedMeshReport> graded;
   bem::BoundarySolution solution;     ///< φ, q: #F×3 on solver_mesh
 };
 

@@ -32,6 +32,8 @@ ThicknessResult measure(ThicknessResult result, const ThicknessOptions& given,
   const MemoryWatch watch(options.solve.max_memory_bytes);
   const double h0 = options.solve.h0;
   result.h0 = h0;
+  if (options.measure == ThicknessMeasure::wall)
+    options.solve.mesh_rule = SolverMeshRule::wall_reading;
   result.boundary = solve_boundary(result.input, options.solve, result.times, progress);
   const geometry::SurfaceMesh& solver_mesh = result.boundary.solver_mesh;
   features::FeatureParameters parameters;
@@ -58,9 +60,8 @@ ThicknessResult measure(ThicknessResult result, const ThicknessOptions& given,
   });
   throw_if_cancelled();  // the features' own loops have no poll points
   if (options.measure == ThicknessMeasure::wall) {
-    result.wall = result.times.time("wall", [&] {
-      return wall_thickness(solver_mesh, result.boundary.solution, parameters, progress);
-    });
+    result.wall =
+        wall_thickness(solver_mesh, result.boundary.solution, parameters, progress, &result.times);
     Eigen::VectorXd wall = result.wall.thickness;
     if (options.edges == EdgeMode::exact)
       wall = wall.cwiseMin(result.solver_features.face.col(kColumnHp));
@@ -68,6 +69,7 @@ ThicknessResult measure(ThicknessResult result, const ThicknessOptions& given,
     result.solver_features.vertex.col(kColumnWall) = vertex_mean(solver_mesh, wall);
   }
   result.thickness = result.solver_features.face.col(result.column);
+  const auto regions_start = StageTimes::Clock::now();
   const double unmeasurable_from = features::kMaxThicknessFactor * h0;
   result.statistics = thickness_statistics(solver_mesh, result.thickness, unmeasurable_from);
   result.histogram = area_histogram(result.thickness, solver_mesh.face_areas(), kHistogramBins,
@@ -88,6 +90,8 @@ ThicknessResult measure(ThicknessResult result, const ThicknessOptions& given,
         r.skeleton_point = result.wall.mid_point.row(r.extreme_face).transpose();
   }
   result.clamped_faces = (result.thickness.array() == 0.0).count();
+  result.times.add("regions", std::chrono::duration<double>(StageTimes::Clock::now() -
+                                                             regions_start).count());
   if (options.map_to_input)
     result.input_features = result.times.time("map_back", [&] {
       report_progress(progress, "map to input mesh", 0.0);

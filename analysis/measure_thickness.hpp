@@ -111,7 +111,8 @@ struct ThicknessResult {
   /// (features/thickness.hpp): f above 1/a, which only discretisation error produces.
   Eigen::Index clamped_faces = 0;
   /// Wall time of the stages: "read" (file input only), "refine", "assemble", "solve",
-  /// "features", "wall" (measure wall only), "map_back" (map_to_input only).
+  /// "features", "mid-surface search" and "pairing" (measure wall only), "regions"
+  /// (statistics, regions, histogram), "map_back" (map_to_input only).
   StageTimes times;
 };
 

@@ -21,14 +21,36 @@ namespace bemshape::analysis {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-/// Regula falsi steps at most (the Illinois variant converges superlinearly: three or four
-/// steps reach kDepthTolerance from the first bracket).
-constexpr int kMaxRefinements = 12;
-/// Accuracy of the interior sums relative to the largest value of s: the zero of g is found
-/// to about this fraction of the wall, well below kDepthTolerance.
-constexpr double kTreecodeTolerance = 1e-5;
-/// Panels per leaf of the treecode's cluster tree (bem::PotentialEvaluationOptions's default).
-constexpr Eigen::Index kLeafSize = 16;
+/// Evaluations per face at most: Newton converges in one or two from the flat-wall first
+/// step on flat and curved walls, the growth steps of a search along a wall stop at
+/// kAlongWallDepthRatio, and a bracket shrinks superlinearly.
+constexpr int kMaxSteps = 16;
+/// A Newton step forward before the zero is bracketed goes at most this factor deeper.
+constexpr double kMaxNewtonGrowth = 4.0;
+/// The first step is at least this fraction of h0 deep.
+constexpr double kMinDepthRatio = 1e-3;
+/// A search that must go deeper than this times the wall read at its current point runs
+/// along the wall: features::along_wall classifies 2τ0 > kAlongWallRatio·h_mid, i.e.
+/// τ0 > 0.75·h_mid, as such; twice that leaves a margin for h_mid changing on the way.
+constexpr double kAlongWallDepthRatio = features::kAlongWallRatio;
+/// The across-wall direction of the field (the eigenvector of λ3, where λ2 is below this
+/// fraction of λ3, so that it is defined: not at the axis of a rod or the centre of a ball)...
+constexpr double kDistinctEigenvalueRatio = 0.5;
+/// ... more than 60° from the search direction: the search runs along the wall.
+constexpr double kAlongWallCosine = 0.5;
+/// The treecode's order and acceptance (bem/evaluate/laplace_treecode.hpp): θ = 0.5 and
+/// p = 10 keep s and ∇s within about 4e−5 of the direct sums (docs/benchmarks.md,
+/// "Interior evaluation at many points"), so the zero of g is found to about that fraction
+/// of the wall, well below kDepthTolerance. The mid-surface of a wall meshed with elements
+/// as long as the wall is thick lies within a panel or two of the surface, where most of the
+/// cost is the exact integrals of the panels the acceptance criterion does not admit: θ = 0.5
+/// admits clusters at twice their radius, where θ = 0.3 admits them at three times (the
+/// l-bracket's wall stage 2.5 → 1.5 s, the readings unchanged to 1e−5).
+constexpr int kTreecodeOrder = 10;
+constexpr double kTreecodeTheta = 0.5;
+/// Panels per leaf of the treecode's cluster tree: smaller leaves than the evaluation of
+/// `features` (16), so that fewer panels near a point are integrated exactly.
+constexpr Eigen::Index kLeafSize = 8;
 
 struct FaceResult {
   bool found = false;
@@ -43,62 +65,64 @@ class MidSurfaceSearch {
                    const features::FeatureParameters& parameters)
       : treecode_(treecode), reach_(reach), parameters_(parameters) {}
 
+  /// Safeguarded Newton on g(τ) = s(x − τn)·n, whose derivative g'(τ) = −nᵀ(∇s)n comes with
+  /// every evaluation of ∇s (see the top of wall_thickness.hpp).
   FaceResult operator()(const Eigen::Vector3d& x, const Eigen::Vector3d& n, double g0,
                         double slope0, bem::LaplaceTreecode::Workspace& workspace,
                         bem::TreecodeCounts& counts) const {
     FaceResult result;
     if (!(std::abs(g0) > 0.0)) return result;
-    auto across = [&](double tau, bool& inside) {
-      ++result.evaluations;
-      const bem::LaplaceTreecode::Value v =
-          treecode_.evaluate_values(x - tau * n, workspace, counts);
-      inside = v.winding > 0.5;
-      return v.s.dot(n.transpose());
-    };
+    const bool positive = g0 > 0.0;
     // First step: the middle of a flat wall (g falls linearly from g0 with slope q·n).
-    double step = slope0 * g0 > 0.0 ? g0 / slope0 : 0.5 * parameters_.h0;
-    step = std::max(step, 1e-3 * parameters_.h0);
+    double tau = slope0 * g0 > 0.0 ? g0 / slope0 : 0.5 * parameters_.h0;
+    tau = std::clamp(tau, kMinDepthRatio * parameters_.h0, reach_);
     double lo = 0.0, g_lo = g0, hi = kNaN, g_hi = kNaN;
-    for (double tau = step;; tau = std::min(tau * kDepthGrowth, reach_)) {
-      bool inside = true;
-      const double g = across(tau, inside);
-      if (!inside) return result;
-      if ((g > 0.0) != (g0 > 0.0)) {
-        hi = tau;
-        g_hi = g;
-        break;
-      }
-      lo = tau;
-      g_lo = g;
-      if (tau >= reach_) return result;
-    }
-    // Illinois: after two steps on the same side, halve the other end's value.
-    int side = 0;
-    for (int k = 0; k < kMaxRefinements && hi - lo > kDepthTolerance * lo; ++k) {
-      const double tau = lo - g_lo * (hi - lo) / (g_hi - g_lo);
-      bool inside = true;
-      const double g = across(tau, inside);
-      if ((g > 0.0) == (g0 > 0.0)) {
+    for (int step = 0; step < kMaxSteps; ++step) {
+      ++result.evaluations;
+      const bem::LaplaceTreecode::Value v = treecode_.evaluate(x - tau * n, workspace, counts);
+      if (!(v.winding > 0.5)) return result;  // left the solid: no mid-surface along −n
+      const double g = v.s.dot(n.transpose());
+      const double slope = -n.dot(v.gradient * n);
+      if ((g > 0.0) == positive) {
         lo = tau;
         g_lo = g;
-        if (side == -1) g_hi *= 0.5;
-        side = -1;
       } else {
         hi = tau;
         g_hi = g;
-        if (side == 1) g_lo *= 0.5;
-        side = 1;
       }
+      // Newton's step where g falls from g0 towards its zero (g0·g' < 0), else none.
+      double next = g0 * slope < 0.0 ? tau - g / slope : kNaN;
+      const auto tensor = features::feature_tensor<3>(v.gradient);
+      if (std::isfinite(next) && std::abs(next - tau) <= kDepthTolerance * tau) {
+        result.depth = next;
+        result.point = x - next * n;
+        result.mid_thickness =
+            features::mid_surface_thickness(tensor.eigenvalues, parameters_.h0, parameters_.a);
+        result.rim_indicator = v.s.norm() / std::abs(g0);
+        result.found = true;
+        return result;
+      }
+      if (std::isfinite(hi)) {
+        // Bracketed: Newton inside the bracket, else regula falsi.
+        if (!(next > lo && next < hi)) next = lo - g_lo * (hi - lo) / (g_hi - g_lo);
+        if (hi - lo <= kDepthTolerance * lo) next = std::abs(g_lo) <= std::abs(g_hi) ? lo : hi;
+      } else {
+        // Not bracketed: forward, at least by kDepthGrowth and at most by kMaxNewtonGrowth.
+        if (!(next > tau)) next = kDepthGrowth * tau;
+        next = std::clamp(next, kDepthGrowth * tau, kMaxNewtonGrowth * tau);
+        // The search runs along a wall (from a rim face, a hole's wall, the end of a rib), not
+        // across it: the wall the field reads here lies across another direction than n, or
+        // its mid-surface would be far deeper than that wall is thick.
+        const Eigen::Vector3d& lambda = tensor.eigenvalues;
+        const bool across_other = lambda(1) < kDistinctEigenvalueRatio * lambda(2) &&
+                                  std::abs(tensor.eigenvectors.col(2).dot(n)) < kAlongWallCosine;
+        const double wall =
+            features::mid_surface_thickness(lambda, parameters_.h0, parameters_.a);
+        if (across_other || next > kAlongWallDepthRatio * wall || tau >= reach_) return result;
+        next = std::min(next, reach_);
+      }
+      tau = next;
     }
-    result.depth = std::abs(g_lo) <= std::abs(g_hi) ? lo : hi;
-    result.point = x - result.depth * n;
-    ++result.evaluations;
-    const bem::LaplaceTreecode::Value v = treecode_.evaluate(result.point, workspace, counts);
-    const auto tensor = features::feature_tensor<3>(v.gradient);
-    result.mid_thickness =
-        features::mid_surface_thickness(tensor.eigenvalues, parameters_.h0, parameters_.a);
-    result.rim_indicator = v.s.norm() / std::abs(g0);
-    result.found = true;
     return result;
   }
 
@@ -138,13 +162,15 @@ void fill_from_neighbours(const geometry::SurfaceMesh& mesh, Eigen::VectorXd& va
 WallThickness wall_thickness(const geometry::SurfaceMesh& mesh,
                              const bem::BoundarySolution& solution,
                              const features::FeatureParameters& parameters,
-                             const ProgressCallback& progress) {
+                             const ProgressCallback& progress, StageTimes* times) {
+  StageTimes own;
+  StageTimes& stages = times ? *times : own;
+  const auto search_start = StageTimes::Clock::now();
   const Eigen::Index nf = mesh.num_faces();
   const std::vector<bem::Panel> panels = bem::make_panels(mesh);
   const bem::ClusterTree tree(panels, kLeafSize);
-  const bem::LaplaceTreecode treecode(
-      panels, tree, solution.q, solution.phi,
-      bem::LaplaceTreecodeParameters::for_tolerance(kTreecodeTolerance));
+  const bem::LaplaceTreecode treecode(panels, tree, solution.q, solution.phi,
+                                      {kTreecodeOrder, kTreecodeTheta});
   const Eigen::MatrixX3d vertex_s = bem::reconstruct_vertex_values(mesh, solution.phi);
   const MidSurfaceSearch search(treecode, mesh.bounding_box().diagonal(), parameters);
 
@@ -185,6 +211,9 @@ WallThickness wall_thickness(const geometry::SurfaceMesh& mesh,
   }
   throw_if_cancelled();
   result.evaluations = evaluations;
+  const auto pairing_start = StageTimes::Clock::now();
+  stages.add("mid-surface search",
+             std::chrono::duration<double>(pairing_start - search_start).count());
   // The skins' separation where two of them share a mid-surface point: the rim reading,
   // and the wall's reading at a junction.
   FaceMask found(nf), across(nf);
@@ -211,6 +240,8 @@ WallThickness wall_thickness(const geometry::SurfaceMesh& mesh,
       result.thickness(f) = std::isfinite(result.mid_thickness(f))
                                 ? result.mid_thickness(f)
                                 : features::kMaxThicknessFactor * parameters.h0;
+  stages.add("pairing",
+             std::chrono::duration<double>(StageTimes::Clock::now() - pairing_start).count());
   report_progress(progress, "wall thickness", 1.0);
   return result;
 }

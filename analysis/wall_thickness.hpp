@@ -33,6 +33,7 @@
 
 #include <Eigen/Core>
 
+#include "analysis/stage_times.hpp"
 #include "bem/solve/boundary_solution.hpp"
 #include "core/progress.hpp"
 #include "features/feature_parameters.hpp"
@@ -65,11 +66,13 @@ struct WallThickness {
 };
 
 /// The wall thickness of every face of `solver_mesh` from its boundary solution. Parallel over
-/// faces; polls cancellation; reports progress as "wall thickness".
+/// faces; polls cancellation; reports progress as "wall thickness". With `times`, adds the
+/// stages "mid-surface search" (the treecode and the search) and "pairing" (the skins across
+/// the wall, the readings and the neighbours' fill).
 WallThickness wall_thickness(const geometry::SurfaceMesh& solver_mesh,
                              const bem::BoundarySolution& solution,
                              const features::FeatureParameters& parameters,
-                             const ProgressCallback& progress = {});
+                             const ProgressCallback& progress = {}, StageTimes* times = nullptr);
 
 /// Per-vertex values of a per-face field: the area-weighted mean over each vertex's faces.
 Eigen::VectorXd vertex_mean(const geometry::SurfaceMesh& mesh, const Eigen::VectorXd& face_values);

@@ -14,11 +14,12 @@
 namespace bemshape::apps {
 
 /// Registers --max-edge (the remesher's target edge length [model units]; empty = the
-/// default rule 1.5·a·h0) and --sharp-angle (crease angle of the remesher [degrees]).
+/// default of what is read: analysis::SolverMeshRule) and --sharp-angle (crease angle of the
+/// remesher [degrees]).
 inline void add_solver_mesh_options(CLI::App& command, std::optional<double>& max_edge,
                                     double& sharp_angle) {
   command.add_option("--max-edge", max_edge,
-                     "Element edge length of the solver mesh, in file units: the remesher's target, no edge longer than 1.3 times it (default 1.5*a*h0)");
+                     "Element edge length of the solver mesh, in file units: the remesher's target, no edge longer than 1.3 times it (default: for thickness --measure wall a graded mesh whose elements follow the walls, at most 2*h0; otherwise 1.5*a*h0)");
   command
       .add_option("--sharp-angle", sharp_angle,
                   "Edges with a dihedral angle above this [degrees] are kept as creases when "

@@ -16,6 +16,9 @@
 //   --no-uniform          skip the uniform mesh (geometry::refine_uniformly)
 //   --uniform-edge E      edge of the uniform mesh as a multiple of h0 (default 0.3 = 1.5·a·h0)
 //   --write DIR           write each mesh as DIR/<part>-uniform.stl and DIR/<part>-graded.stl
+//   --wall-reading        start from the wall reading's default mesh
+//                         (analysis::wall_reading_mesh_parameters) instead of issue #32's
+//   --thickness-ratio C   c_t; --thin-wall-ratio T: t_thin = T·h0; --curvature-ratio C: c_ρ
 //
 // One line per mesh:
 //   part kind faces seconds min_edge max_edge min_angle max_edge/h volume_change area_change
@@ -32,6 +35,7 @@
 #include "apps/output/stl_writer.hpp"
 #include "bem/kernels/transmission_parameters.hpp"
 #include "core/errors.hpp"
+#include "analysis/boundary_solve.hpp"
 #include "geometry/closest_point.hpp"
 #include "geometry/graded_remeshing.hpp"
 #include "geometry/isotropic_remeshing.hpp"
@@ -139,7 +143,21 @@ int main(int argc, char** argv) {
       }
       return argv[++i];
     };
-    if (arg == "--max-edge-ratio")
+    if (arg == "--wall-reading")  // the default mesh of the wall reading; later options change it
+      graded = analysis::wall_reading_mesh_parameters(1.0, 0.2, 1.0);
+    else if (arg == "--thickness-ratio")
+      graded.wall_thickness_ratio = std::stod(value());
+    else if (arg == "--thin-wall-ratio")
+      graded.thin_wall_ratio = std::stod(value());
+    else if (arg == "--chord-wall-ratio")
+      graded.chord_thickness_ratio = std::stod(value());
+    else if (arg == "--min-chord-ratio")
+      graded.min_chord_ratio = std::stod(value());
+    else if (arg == "--min-size-ratio")
+      graded.min_size_ratio = std::stod(value());
+    else if (arg == "--curvature-ratio")
+      graded.curvature_ratio = std::stod(value());
+    else if (arg == "--max-edge-ratio")
       graded.max_edge_ratio = std::stod(value());
     else if (arg == "--gradation")
       graded.gradation = std::stod(value());

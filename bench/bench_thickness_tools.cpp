@@ -456,7 +456,12 @@ int main(int argc, char** argv) {
         threads = std::stoi(argv[++i]);
         omp_set_num_threads(threads);
       } else if (arg == "--noise" && value) {
-        while (i + 1 < argc && argv[i + 1][0] != '-') noises.push_back(std::stod(argv[++i]));
+        // The numbers that follow (a part's name ends the list).
+        for (char* end = nullptr; i + 1 < argc; ++i) {
+          const double noise = std::strtod(argv[i + 1], &end);
+          if (end == argv[i + 1] || *end != '\0') break;
+          noises.push_back(noise);
+        }
       } else if (arg == "--seed" && value) {
         seed = std::stoull(argv[++i]);
       } else if (arg == "--min-faces" && value) {

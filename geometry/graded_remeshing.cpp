@@ -142,7 +142,7 @@ GradedMesh graded_solver_mesh(const SurfaceMesh& mesh, const GradedMeshParameter
   crease_options.crease_angle_degrees = p.crease_angle_degrees;
   crease_options.smooth_angle_degrees = p.smooth_angle_degrees;
   crease_options.chord_tolerance = p.chord_tolerance_ratio * p.h0;
-  crease_options.min_chord = p.fine_edge;
+  crease_options.min_chord = p.min_chord_ratio * p.fine_edge;
   const SurfaceCreases creases = find_surface_creases(mesh, crease_options);
   SizeFieldParameters field_parameters;
   field_parameters.fine_edge = p.fine_edge;
@@ -153,6 +153,9 @@ GradedMesh graded_solver_mesh(const SurfaceMesh& mesh, const GradedMeshParameter
   field_parameters.curvature_ratio = p.curvature_ratio;
   field_parameters.crease_spacing_ratio = p.crease_spacing_ratio;
   field_parameters.sample_spacing = kThicknessSampleSpacing * p.h0;
+  field_parameters.refine_creases = p.refine_creases;
+  field_parameters.min_size = p.min_size_ratio * p.fine_edge;
+  field_parameters.chord_thickness_ratio = p.chord_thickness_ratio;
   const MeshSizeField field(mesh, creases, field_parameters);
   if (p.keep_input_face_ratio > 0.0) {
     // An input already as fine as the field asks, well shaped, and not much finer: remeshing

@@ -105,12 +105,28 @@ struct GradedMeshParameters {
   double wall_thickness_ratio = kWallThicknessEdgeRatio;  ///< c_t
   double curvature_ratio = kCurvatureEdgeRatio;           ///< c_ρ
   double crease_spacing_ratio = kCreaseSpacingEdgeRatio;  ///< c_l
+  /// Creases ask for h_f (surface values resolved along every edge of the part); false: the
+  /// elements along a crease follow the other sources (the wall reading, read half a wall
+  /// deep, does not need the surface's edge layers resolved).
+  bool refine_creases = true;
+  /// No source asks for less than this times h_f (SizeFieldParameters::min_size): creases
+  /// closer than that (a boolean's leftovers, CAD slivers) are kept as they are, with the
+  /// angles they allow, instead of refining around them.
+  double min_size_ratio = kMinSizeRatio;
   double crease_angle_degrees = 1.0;  ///< θ_c (--sharp-angle)
   /// θ_s: facet angles of tessellated smooth surfaces up to this may be smoothed
   /// (surface_creases.hpp); 0 keeps every crease. TODO-measured.
   double smooth_angle_degrees = 15.0;
   /// δ = this·h0: the chord tolerance of smoothed surfaces. TODO-measured.
   double chord_tolerance_ratio = 2e-3;
+  /// Facets are smoothed only where the chord they allow, h_δ, is at least this times h_f
+  /// (CreaseOptions::min_chord): 1 keeps the facets where even the fine elements would fall
+  /// more than δ below them; 0 smooths every tessellated smooth surface (elements of h_δ
+  /// instead of the crease spacing of its facets).
+  double min_chord_ratio = 1.0;
+  /// c_δ: if > 0, the chord tolerance is c_δ times the wall under each smoothed edge instead
+  /// of δ (SizeFieldParameters::chord_thickness_ratio).
+  double chord_thickness_ratio = 0.0;
   /// An input whose edges are all within 4/3 of the field's h, whose angles are all above
   /// remeshing.min_angle_degrees and whose face count is at most this times the count the
   /// field asks for is returned as it is (0: always remesh).

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <sstream>
 #include <unordered_map>
 #include <vector>
@@ -247,14 +248,42 @@ MeshSizeField::MeshSizeField(const SurfaceMesh& mesh, const SurfaceCreases& crea
       add(a, b, p.fine_edge, SizeReason::crease);
   }
 
+  // Rays along −n against the surface: the wall-thickness estimate of the thin-wall, wall-
+  // thickness and (with c_δ) chord sources.
+  const bool chord_from_wall = p.chord_thickness_ratio > 0.0 && p.sample_spacing > 0.0;
+  std::unique_ptr<detail::TriangleRayCaster> rays;
+  if (p.thin_wall > 0.0 || chord_from_wall)
+    rays = std::make_unique<detail::TriangleRayCaster>(mesh.vertices(), mesh.faces(),
+                                                       kRayPieceRatio * p.sample_spacing);
+  // Walls thicker than this set no size below h_max.
+  const double reach = std::max(p.thin_wall, p.max_edge / p.wall_thickness_ratio);
+
   // Curvature and chord limits of the edges the remesher crosses.
-  for (const CrossedEdge& e : creases.crossed) {
+  std::vector<double> chord(creases.crossed.size());
+  for (std::size_t i = 0; i < chord.size(); ++i) chord[i] = creases.crossed[i].max_chord;
+  if (chord_from_wall) {
+    // The wall under the edge: the thinner of the rays from its two faces' centroids. A
+    // chord of length h across the edge then sags by at most c_δ·wall; beyond the reach of
+    // the rays (no wall within h_max/c_t) by at most c_δ·reach.
+    auto wall_under = [&](int f) {
+      const Vec3 n = mesh.face_normals().row(f);
+      return rays->first_hit(mesh.face_centroids().row(f).transpose(), -n, f, reach);
+    };
+#pragma omp parallel for schedule(dynamic, 256)
+    for (std::size_t i = 0; i < chord.size(); ++i) {
+      const CrossedEdge& e = creases.crossed[i];
+      const double wall = std::min({wall_under(e.f0), wall_under(e.f1), reach});
+      chord[i] = longest_chord_within(e.angle, e.facet_width, p.chord_thickness_ratio * wall);
+    }
+  }
+  for (std::size_t i = 0; i < chord.size(); ++i) {
+    const CrossedEdge& e = creases.crossed[i];
     const Vec3 a = V.row(e.a), b = V.row(e.b);
     const double curvature = p.curvature_ratio > 0.0
                                  ? std::max(p.fine_edge, p.curvature_ratio * e.facet_width / e.angle)
                                  : kInfinity;
-    if (e.max_chord < curvature)
-      add(a, b, e.max_chord, SizeReason::chord);
+    if (chord[i] < curvature)
+      add(a, b, chord[i], SizeReason::chord);
     else
       add(a, b, curvature, SizeReason::curvature);
   }
@@ -351,14 +380,10 @@ MeshSizeField::MeshSizeField(const SurfaceMesh& mesh, const SurfaceCreases& crea
           samples.push_back({x, n, f});
       }
     }
-    const detail::TriangleRayCaster rays(mesh.vertices(), mesh.faces(),
-                                         kRayPieceRatio * p.sample_spacing);
-    // Walls thicker than this set no size below h_max.
-    const double reach = std::max(p.thin_wall, p.max_edge / p.wall_thickness_ratio);
     std::vector<double> wall(samples.size());
 #pragma omp parallel for schedule(dynamic, 256)
     for (std::size_t i = 0; i < samples.size(); ++i)
-      wall[i] = rays.first_hit(samples[i].x, -samples[i].n, samples[i].face, reach);
+      wall[i] = rays->first_hit(samples[i].x, -samples[i].n, samples[i].face, reach);
     for (std::size_t i = 0; i < samples.size(); ++i) {
       if (!std::isfinite(wall[i]))
         continue;

@@ -25,7 +25,12 @@
 //   curvature        smoothed edges and facet creases of tessellated smooth surfaces of radius
 //                    ρ = w/θ: max(h_f, c_ρ·ρ)
 //   chord            smoothed and nearly flat edges: h_δ, the longest chord that stays within
-//                    the chord tolerance δ of the facets (surface_creases.hpp)
+//                    the chord tolerance δ of the facets (surface_creases.hpp); with a
+//                    chord-to-wall ratio c_δ the tolerance is c_δ times the wall under the edge
+//                    (the ray along −n from its faces), so that a chord changes no wall by more
+//                    than that fraction: a 3 mm tube keeps its round walls within 0.03 mm while
+//                    a hole through a plate, whose wall across is the plate's extent, may be
+//                    coarse
 //
 // The wall thickness from a ray is a geometric estimate for choosing element sizes only; the
 // thickness the program reports comes from the PDE.
@@ -97,6 +102,9 @@ struct SizeFieldParameters {
   double min_size = 0.0;
   /// Spacing of the wall-thickness samples [model units] (> 0 when thin_wall > 0).
   double sample_spacing = 0.0;
+  /// c_δ: the chord sources' tolerance is this times the wall under the edge (≤ 0: the
+  /// tolerance the crossed edges were found with, surface_creases.hpp). Needs sample_spacing.
+  double chord_thickness_ratio = 0.0;
   /// false: creases are sources of size h_max instead of h_f (a uniform field of h_max,
   /// bounded only by crease spacing and chords: the uniform remeshing mode).
   bool refine_creases = true;

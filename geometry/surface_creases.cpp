@@ -144,7 +144,8 @@ SurfaceCreases find_surface_creases(const SurfaceMesh& mesh, const CreaseOptions
     const double length = (V.row(e.a) - V.row(e.b)).norm();
     if (candidate(e)) {
       bool smoothed = false, tessellated = false;
-      CrossedEdge crossed{e.a, e.b, e.angle, 0.0, std::numeric_limits<double>::infinity(), false};
+      CrossedEdge crossed{e.a, e.b, e.angle, 0.0, std::numeric_limits<double>::infinity(), false,
+                          e.f0, e.f1};
       if (tessellation && small_candidate(e)) {
         const auto A = static_cast<std::size_t>(facet_of[static_cast<std::size_t>(e.f0)]);
         const auto B = static_cast<std::size_t>(facet_of[static_cast<std::size_t>(e.f1)]);
@@ -174,7 +175,7 @@ SurfaceCreases find_surface_creases(const SurfaceMesh& mesh, const CreaseOptions
                                 options.chord_tolerance > 0.0
                                     ? longest_chord_within(e.angle, width, options.chord_tolerance)
                                     : std::numeric_limits<double>::infinity(),
-                                false});
+                                false, e.f0, e.f1});
     }
   }
 

@@ -67,6 +67,7 @@ struct CrossedEdge {
   double facet_width = 0.0;  ///< w [model units]: narrower adjacent facet (or face height)
   double max_chord = 0.0;    ///< h_δ = sag⁻¹(δ) [model units]; +∞ if δ = 0 was not asked for
   bool smoothed = false;     ///< a crease candidate (θ > θ_c) smoothed by the rule above
+  int f0 = -1, f1 = -1;      ///< the two faces of the edge
 };
 
 struct SurfaceCreases {

@@ -16,6 +16,24 @@ nlohmann::json report_header(const std::string& command, const std::string& inpu
 }
 
 nlohmann::json mesh_json(const geometry::MeshReport& input, const analysis::BoundarySolve& run) {
+  // The graded solver mesh's sizes and why (analysis::SolverMeshRule::wall_reading).
+  nlohmann::json graded = nullptr;
+  if (run.graded) {
+    const geometry::GradedMeshReport& g = *run.graded;
+    nlohmann::json area = nlohmann::json::object();
+    for (int r = 0; r < geometry::kSizeReasons; ++r)
+      if (g.area_by_reason[std::size_t(r)] > 0.0)
+        area[geometry::to_string(static_cast<geometry::SizeReason>(r))] =
+            g.area_by_reason[std::size_t(r)];
+    graded = {{"min_edge", g.min_edge},
+              {"mean_edge", g.mean_edge},
+              {"max_edge", g.max_edge},
+              {"min_angle_degrees", g.min_angle_degrees},
+              {"creases", g.creases},
+              {"smoothed_edges", g.smoothed_edges},
+              {"kept_input", g.kept_input},
+              {"area_by_size_reason", area}};
+  }
   return {{"input_faces", input.faces},
           {"input_vertices", input.vertices},
           {"solver_faces", run.solver_mesh.num_faces()},
@@ -23,7 +41,8 @@ nlohmann::json mesh_json(const geometry::MeshReport& input, const analysis::Boun
           {"solver_max_edge", run.solver_mesh.max_edge_length()},
           {"area", input.area},
           {"volume", input.volume},
-          {"repairs", input.repairs}};
+          {"repairs", input.repairs},
+          {"graded", graded}};
 }
 
 nlohmann::json solver_json(const analysis::BoundarySolve& run) {

@@ -76,7 +76,8 @@ TEST_CASE(
   for (const auto& [stage, seconds] : from_file.times.stages())
     stages.push_back(stage);
   CHECK(stages ==
-        std::vector<std::string>{"read", "refine", "assemble", "solve", "features", "map_back"});
+        std::vector<std::string>{"read", "refine", "assemble", "solve", "features", "regions",
+                                 "map_back"});
 
   // The same triangles as arrays, with a check whose threshold every wall is below.
   const geometry::TriangleSoup soup = geometry::read_triangle_soup(file.path);
