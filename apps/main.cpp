@@ -9,6 +9,7 @@
 #include <new>
 #include <string>
 
+#include "apps/check_all_command.hpp"
 #include "apps/check_command.hpp"
 #include "apps/compare_command.hpp"
 #include "apps/exit_codes.hpp"
@@ -49,6 +50,7 @@ int main(int argc, char** argv) {
   apps::register_features_command(app, exit_code);
   apps::register_fem_command(app, exit_code);
   apps::register_compare_command(app, exit_code);
+  apps::register_check_all_command(app, exit_code);
 
   apps::install_interrupt_handlers();
   try {

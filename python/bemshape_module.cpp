@@ -1,6 +1,7 @@
-// The Python module `bemshape`: the library's jobs for numpy arrays (python/*_function.cpp,
-// python/mesh_functions.cpp) and its error types as Python exceptions, each derived from the
-// built-in one a Python user expects:
+// The compiled part of the Python package `bemshape`, its module bemshape._core (the
+// package's __init__.py, python/bemshape/, names its functions bemshape.*): the library's
+// jobs for numpy arrays (python/*_function.cpp, python/mesh_functions.cpp) and its error
+// types as Python exceptions, each derived from the built-in one a Python user expects:
 //   bemshape.InputError(ValueError)        bad arrays, options or meshes (exit code 2 in the CLI)
 //   bemshape.ResourceError(MemoryError)    a solve that does not fit in max_memory or the machine
 //   bemshape.NumericalError(RuntimeError)  no convergence, a singular system, a NaN
@@ -10,7 +11,7 @@
 #include "core/errors.hpp"
 #include "python/module_functions.hpp"
 
-PYBIND11_MODULE(bemshape, module) {
+PYBIND11_MODULE(_core, module) {
   namespace py = pybind11;
   using namespace bemshape;
   module.doc() =
