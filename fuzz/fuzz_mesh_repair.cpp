@@ -5,7 +5,9 @@
 // regions of any size on the lattice get repaired), then one byte per coordinate on a coarse
 // lattice (value/16, so coincident vertices, collinear corners, duplicate, flipped and
 // intersecting faces are common), then three bytes per face (indices modulo the vertex
-// count), at most 48 faces. A soup the pipeline calls usable must be closed and manifold
+// count), at most 48 faces. Crossings that cannot be repaired are kept as defect regions
+// (MeshPreparationOptions::measure_defects). A soup the pipeline calls usable must be closed
+// and manifold, and cross itself only inside the regions it reports
 // (fuzz/mesh_file_harness.hpp).
 #include <algorithm>
 
@@ -17,6 +19,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const int nv = 4 + data[0] % 32;
   geometry::MeshPreparationOptions options;
   options.repair_length = 0.5 * (data[0] / 32);
+  options.measure_defects = true;
   std::size_t at = 1;
   if (size < at + 3 * static_cast<std::size_t>(nv)) return 0;
   geometry::TriangleSoup soup;

@@ -369,6 +369,25 @@ PreparedMesh inspect_triangle_soup(const TriangleSoup& soup, const std::string& 
     if ((si.pairs > 0 || !split.crossing_edges.empty()) && options.repair_surface && closed) {
       IntersectionRepair fix =
           resolve_self_intersections(V, F, si, repair_length, split.crossing_edges);
+      if (!fix.crossings_resolved.empty()) {
+        double largest = 0.0;
+        for (const SurfaceRepairStep& step : fix.crossings_resolved)
+          largest = std::max(largest, step.size);
+        add_problem(report, Status::repaired, fix.pairs_within_shells, si.first,
+                    counted(fix.pairs_within_shells, "pair", "pairs") +
+                        " of intersecting faces within a shell",
+                    "the surface crosses itself in " +
+                        counted(fix.crossings_resolved.size(), "region", "regions") +
+                        " up to " + format_number(largest) +
+                        " across: split along the curves where it crosses and replaced by the "
+                        "boundary of the region it encloses (the points of positive winding "
+                        "number, as for overlapping bodies); volume " +
+                        format_number(fix.resolved_volume_before) +
+                        " as given (overlaps counted twice), " +
+                        format_number(fix.resolved_volume_after) + " after");
+        for (const SurfaceRepairStep& step : fix.crossings_resolved)
+          report.repairs.push_back(step.description);
+      }
       if (!fix.clusters_replaced.empty()) {
         double largest = 0.0;
         for (const SurfaceRepairStep& step : fix.clusters_replaced)
@@ -394,7 +413,26 @@ PreparedMesh inspect_triangle_soup(const TriangleSoup& soup, const std::string& 
       V = std::move(fix.vertices);
       F = std::move(fix.faces);
       si = std::move(fix.left);
-      if (si.pairs > 0) {
+      if ((si.pairs > 0 || fix.crossings_left) && options.measure_defects &&
+          !fix.unresolved.empty()) {
+        // Measured on the surface as given: the regions are reported and marked.
+        const DefectZone& largest = fix.unresolved.front();
+        const std::size_t count = si.pairs > 0 ? si.pairs : split.edges_crossing;
+        add_problem(report, Status::defect, count,
+                    si.pairs > 0 ? si.first : split.first_crossing,
+                    si.pairs > 0 ? counted(si.pairs, "pair", "pairs") + " of intersecting faces"
+                                 : counted(split.edges_crossing, "edge", "edges") +
+                                       " along which bodies pass through each other",
+                    "not repaired in " +
+                        counted(fix.unresolved.size(), "region", "regions") + ", the largest " +
+                        format_number(largest.size()) + " across around " +
+                        format_point(largest.centre()) + ": " + largest.why +
+                        " (" + tolerance +
+                        "); measured on the surface as given, the faces within h0 of each "
+                        "region marked 'defect'; to measure the part as designed, unite the "
+                        "bodies or remove the crossing in CAD");
+        report.defects = std::move(fix.unresolved);
+      } else if (si.pairs > 0) {
         closed = false;
         add_problem(report, Status::refused, si.pairs, si.first,
                     counted(si.pairs, "pair", "pairs") + " of intersecting faces",

@@ -8,11 +8,14 @@
 //   4. split non-manifold edges and vertices (nonmanifold_split.hpp), orient consistently;
 //   5. stitch coinciding open edges, remove loose open pieces and fill holes at most the
 //      repair length ℓ across (surface_repair.hpp);
-//   6. find self-intersections; cut out and refill clusters within a shell at most ℓ across,
-//      unite overlapping bodies (surface_repair.hpp);
-//   7. refuse what is left: larger holes and self-intersections, non-orientable shells,
-//      zero-area faces on a hole, shells that enclose no volume;
-//   8. orient every shell to bound the solid (outer skins outward, cavity walls inward).
+//   6. find self-intersections; replace shells that cross themselves by the boundary of the
+//      region they enclose where that solid is clear, cut out and refill clusters within a
+//      shell at most ℓ across, unite overlapping bodies (surface_repair.hpp);
+//   7. keep the crossings left as defects, measured around (MeshReport::defects), unless
+//      MeshPreparationOptions::measure_defects is off;
+//   8. refuse what is left: larger holes, non-orientable shells, zero-area faces on a hole,
+//      shells that enclose no volume;
+//   9. orient every shell to bound the solid (outer skins outward, cavity walls inward).
 //
 // Nothing is guessed: every change is listed in MeshReport::repairs, every defect in
 // MeshReport::problems with its count and the position of its first occurrence.
@@ -24,6 +27,7 @@
 #include <vector>
 
 #include "core/progress.hpp"
+#include "geometry/defect_zones.hpp"
 #include "geometry/mesh_io.hpp"
 #include "geometry/surface_mesh.hpp"
 #include "geometry/vertex_welding.hpp"
@@ -32,7 +36,9 @@ namespace bemshape::geometry {
 
 /// One rule a mesh broke.
 struct MeshProblem {
-  enum class Status { repaired, refused, note };
+  /// defect: not repaired, but the analysis measures on the surface as given and marks the
+  /// region (MeshReport::defects); the mesh stays usable.
+  enum class Status { repaired, refused, note, defect };
   Status status = Status::refused;
   /// Short name with count, e.g. "12 open boundary edges".
   std::string what;
@@ -75,6 +81,9 @@ struct MeshReport {
   std::vector<MeshProblem> problems;
   /// Every change made to the input, in order, e.g. "merged 3 vertices closer than 2e-7".
   std::vector<std::string> repairs;
+  /// Regions where the surface still crosses itself and is used as given (problems with
+  /// status defect), largest first: the analysis marks the faces near them.
+  std::vector<DefectZone> defects;
 
   bool usable() const;
   /// The refusal as the InputError message: first line "<source>: <first refused
@@ -98,6 +107,10 @@ struct MeshPreparationOptions {
   /// diagonal; a caller that knows the length the analysis resolves (h0, the element size)
   /// passes it.
   double repair_length = 0.0;
+  /// Where a self-crossing cannot be repaired, keep the surface as given, list the region in
+  /// MeshReport::defects (status defect) and stay usable, so that the analysis measures
+  /// around it; false refuses such a mesh.
+  bool measure_defects = false;
   /// Scale the coordinates to millimetres when the file records its unit (3MF); a file
   /// without a unit (STL, OBJ, OFF, PLY) is used as stored, with a note. Off by default:
   /// lengths stay in the file's units, and the report names the unit.
@@ -117,7 +130,8 @@ PreparedMesh inspect_triangle_soup(const TriangleSoup& soup, const std::string& 
 
 /// What the solver stages call: inspect_mesh_file, then throw InputError with
 /// report.refusal_message() if the mesh is not usable. The returned mesh is closed,
-/// manifold, free of self-intersections and degenerate faces, and outward-oriented.
+/// manifold, free of degenerate faces and outward-oriented, and free of self-intersections
+/// outside the regions listed in report.defects.
 PreparedMesh prepare_mesh_file(const std::filesystem::path& path,
                                const MeshPreparationOptions& options = {},
                                const ProgressCallback& progress = {});

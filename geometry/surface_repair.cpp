@@ -11,8 +11,10 @@
 #include "geometry/constructive_solids.hpp"
 #include "geometry/detail/cgal_mesh_repair.hpp"
 #include "geometry/mesh_validation.hpp"
+#include "geometry/nonmanifold_split.hpp"
 #include "geometry/surface_mesh.hpp"
 #include "geometry/union_find.hpp"
+#include "geometry/winding_number_boundary.hpp"
 
 namespace bemshape::geometry {
 namespace {
@@ -91,14 +93,14 @@ struct UnitedShells {
   std::string failure;
 };
 
-/// The faces of one shell with their own compact vertex array.
-SurfaceMesh shell_mesh(const Eigen::MatrixX3d& v, const Eigen::MatrixX3i& f,
-                       const std::vector<int>& shell, int which) {
+/// The faces with in[f] with their own compact vertex array.
+SurfaceMesh faces_mesh(const Eigen::MatrixX3d& v, const Eigen::MatrixX3i& f,
+                       const std::vector<char>& in) {
   std::vector<int> index(static_cast<std::size_t>(v.rows()), -1);
   std::vector<Eigen::Index> rows;
   int next = 0;
   for (Eigen::Index i = 0; i < f.rows(); ++i)
-    if (shell[static_cast<std::size_t>(i)] == which) {
+    if (in[static_cast<std::size_t>(i)]) {
       rows.push_back(i);
       for (int k = 0; k < 3; ++k)
         if (index[static_cast<std::size_t>(f(i, k))] < 0)
@@ -114,6 +116,53 @@ SurfaceMesh shell_mesh(const Eigen::MatrixX3d& v, const Eigen::MatrixX3i& f,
       faces(static_cast<Eigen::Index>(r), k) =
           index[static_cast<std::size_t>(f(rows[r], k))];
   return SurfaceMesh(std::move(vertices), std::move(faces));
+}
+
+/// The faces of one shell with their own compact vertex array.
+SurfaceMesh shell_mesh(const Eigen::MatrixX3d& v, const Eigen::MatrixX3i& f,
+                       const std::vector<int>& shell, int which) {
+  std::vector<char> in(static_cast<std::size_t>(f.rows()), 0);
+  for (std::size_t i = 0; i < in.size(); ++i)
+    in[i] = shell[i] == which;
+  return faces_mesh(v, f, in);
+}
+
+/// The faces with keep[f] on their own vertices, then each replacement with its own.
+void assemble(const Eigen::MatrixX3d& v, const Eigen::MatrixX3i& f, const std::vector<char>& keep,
+              const std::vector<SurfaceMesh>& replacements, Eigen::MatrixX3d& vertices,
+              Eigen::MatrixX3i& faces) {
+  std::vector<int> index(static_cast<std::size_t>(v.rows()), -1);
+  std::vector<Eigen::Vector3d> points;
+  std::vector<std::array<int, 3>> triangles;
+  for (Eigen::Index i = 0; i < f.rows(); ++i) {
+    if (!keep[static_cast<std::size_t>(i)])
+      continue;
+    std::array<int, 3> t{};
+    for (int k = 0; k < 3; ++k) {
+      int& at = index[static_cast<std::size_t>(f(i, k))];
+      if (at < 0) {
+        at = static_cast<int>(points.size());
+        points.push_back(v.row(f(i, k)).transpose());
+      }
+      t[static_cast<std::size_t>(k)] = at;
+    }
+    triangles.push_back(t);
+  }
+  for (const SurfaceMesh& mesh : replacements) {
+    const int offset = static_cast<int>(points.size());
+    for (Eigen::Index i = 0; i < mesh.num_vertices(); ++i)
+      points.push_back(mesh.vertices().row(i).transpose());
+    for (Eigen::Index i = 0; i < mesh.num_faces(); ++i)
+      triangles.push_back({mesh.faces()(i, 0) + offset, mesh.faces()(i, 1) + offset,
+                           mesh.faces()(i, 2) + offset});
+  }
+  vertices.resize(static_cast<Eigen::Index>(points.size()), 3);
+  for (std::size_t i = 0; i < points.size(); ++i)
+    vertices.row(static_cast<Eigen::Index>(i)) = points[i].transpose();
+  faces.resize(static_cast<Eigen::Index>(triangles.size()), 3);
+  for (std::size_t i = 0; i < triangles.size(); ++i)
+    for (int k = 0; k < 3; ++k)
+      faces(static_cast<Eigen::Index>(i), k) = triangles[i][static_cast<std::size_t>(k)];
 }
 
 /// Replaces the shells of each group (group[s] for shell s, −1: none) by the boundary of
@@ -147,38 +196,10 @@ UnitedShells unite_shells(const Eigen::MatrixX3d& v, const Eigen::MatrixX3i& f,
     united.push_back(std::move(accumulated));
   }
   // Faces of shells in no group keep their vertices; the unions' vertices follow.
-  std::vector<int> index(static_cast<std::size_t>(v.rows()), -1);
-  std::vector<Eigen::Vector3d> points;
-  std::vector<std::array<int, 3>> triangles;
-  for (Eigen::Index i = 0; i < f.rows(); ++i) {
-    if (group[static_cast<std::size_t>(shell[static_cast<std::size_t>(i)])] >= 0)
-      continue;
-    std::array<int, 3> t{};
-    for (int k = 0; k < 3; ++k) {
-      int& at = index[static_cast<std::size_t>(f(i, k))];
-      if (at < 0) {
-        at = static_cast<int>(points.size());
-        points.push_back(v.row(f(i, k)).transpose());
-      }
-      t[static_cast<std::size_t>(k)] = at;
-    }
-    triangles.push_back(t);
-  }
-  for (const SurfaceMesh& mesh : united) {
-    const int offset = static_cast<int>(points.size());
-    for (Eigen::Index i = 0; i < mesh.num_vertices(); ++i)
-      points.push_back(mesh.vertices().row(i).transpose());
-    for (Eigen::Index i = 0; i < mesh.num_faces(); ++i)
-      triangles.push_back({mesh.faces()(i, 0) + offset, mesh.faces()(i, 1) + offset,
-                           mesh.faces()(i, 2) + offset});
-  }
-  result.vertices.resize(static_cast<Eigen::Index>(points.size()), 3);
-  for (std::size_t i = 0; i < points.size(); ++i)
-    result.vertices.row(static_cast<Eigen::Index>(i)) = points[i].transpose();
-  result.faces.resize(static_cast<Eigen::Index>(triangles.size()), 3);
-  for (std::size_t i = 0; i < triangles.size(); ++i)
-    for (int k = 0; k < 3; ++k)
-      result.faces(static_cast<Eigen::Index>(i), k) = triangles[i][static_cast<std::size_t>(k)];
+  std::vector<char> keep(static_cast<std::size_t>(f.rows()), 0);
+  for (std::size_t i = 0; i < keep.size(); ++i)
+    keep[i] = group[static_cast<std::size_t>(shell[i])] < 0;
+  assemble(v, f, keep, united, result.vertices, result.faces);
   return result;
 }
 
@@ -188,6 +209,224 @@ std::string describe_fill(const detail::CgalHole& hole) {
          counted(hole.faces_added, "triangle", "triangles") + " (area " +
          number(hole.area_added) + "; rim flat to " + number(hole.out_of_plane) +
          (hole.faired ? "" : "; fairing failed, minimal-area patch kept") + ")";
+}
+
+Eigen::AlignedBox3d face_box(const Eigen::MatrixX3d& v, const Eigen::MatrixX3i& f,
+                             Eigen::Index face) {
+  Eigen::AlignedBox3d b;
+  for (int k = 0; k < 3; ++k)
+    b.extend(Eigen::Vector3d(v.row(f(face, k))));
+  return b;
+}
+
+/// Regions listed separately at most; beyond, a surface crosses itself all over and one
+/// region holds every crossing (merging is quadratic in the number of regions).
+constexpr std::size_t kMaxDefectZones = 256;
+
+/// What was found about a group of crossing shells that the winding numbers did not
+/// resolve: where (the curves and the irregular pieces) and why.
+struct WindingNote {
+  Eigen::AlignedBox3d box;
+  std::string why;
+};
+
+/// Replaces every group of shells joined by the crossing pairs of `current` (with a pair
+/// within one shell, if `self_crossing_only`) by the boundary of the region it encloses,
+/// when that is the solid it was meant to bound (no volume of negative winding number);
+/// notes why the others were not. True if anything was replaced.
+bool resolve_by_winding(IntersectionRepair& result, const SelfIntersections& current,
+                        bool self_crossing_only, std::vector<WindingNote>& notes) {
+  const Eigen::MatrixX3d& V = result.vertices;
+  const Eigen::MatrixX3i& F = result.faces;
+  std::size_t shells = 0;
+  const std::vector<int> shell = shell_labels(F, &shells);
+  UnionFind groups(shells);
+  for (const auto& [f, g] : current.face_pairs)
+    groups.unite(shell[static_cast<std::size_t>(f)], shell[static_cast<std::size_t>(g)]);
+  std::vector<char> crossing(shells, 0), self_crossing(shells, 0);
+  std::vector<std::size_t> pairs(shells, 0);
+  for (const auto& [f, g] : current.face_pairs) {
+    const int root = groups.find(shell[static_cast<std::size_t>(f)]);
+    crossing[static_cast<std::size_t>(root)] = 1;
+    ++pairs[static_cast<std::size_t>(root)];
+    if (shell[static_cast<std::size_t>(f)] == shell[static_cast<std::size_t>(g)])
+      self_crossing[static_cast<std::size_t>(root)] = 1;
+  }
+  std::vector<char> keep(static_cast<std::size_t>(F.rows()), 1);
+  std::vector<SurfaceMesh> replacements;
+  for (std::size_t root = 0; root < shells; ++root) {
+    if (!crossing[root] || (self_crossing_only && !self_crossing[root]))
+      continue;
+    std::vector<char> in(static_cast<std::size_t>(F.rows()), 0);
+    for (std::size_t f = 0; f < in.size(); ++f)
+      in[f] = static_cast<std::size_t>(groups.find(shell[f])) == root;
+    SurfaceMesh group = faces_mesh(V, F, in);
+    // A group whose surface encloses negative volume as a whole (a cavity wall) is resolved
+    // turned outward and turned back.
+    const bool inward = group.signed_volume() < 0.0;
+    if (inward)
+      group = with_flipped_orientation(group);
+    const WindingNumberBoundary b = winding_number_boundary(group.vertices(), group.faces());
+    WindingNote note;
+    note.box = b.curves;
+    note.box.extend(b.irregular);
+    if (note.box.isEmpty())
+      for (std::size_t f = 0; f < in.size(); ++f)
+        if (in[f])
+          note.box.extend(face_box(V, F, static_cast<Eigen::Index>(f)));
+    if (!b.ok) {
+      note.why = "splitting it along the curves where it crosses itself failed (" + b.failure + ")";
+      notes.push_back(std::move(note));
+      continue;
+    }
+    if (b.negative_volume > kNegligibleNegativeVolume * std::max(b.volume, 0.0) ||
+        b.faces.rows() == 0) {
+      note.why = "the surface is inside out over a region of volume " +
+                 number(b.negative_volume) + " (winding number " +
+                 std::to_string(b.min_winding) +
+                 " there: a fold, or a patch pushed through the opposite wall), so the solid "
+                 "it was meant to bound cannot be told";
+      notes.push_back(std::move(note));
+      continue;
+    }
+    // Where the enclosed region touches itself along a curve, four faces meet at an edge:
+    // split it apart as at any non-manifold edge.
+    const NonmanifoldSplit split = split_nonmanifold(b.vertices, b.faces);
+    const MeshValidation valid = validate_mesh(split.vertices, split.faces);
+    if (!valid.closed_manifold() || !split.crossing_edges.empty()) {
+      note.why = "the boundary of the region it encloses is not a closed manifold surface";
+      notes.push_back(std::move(note));
+      continue;
+    }
+    SurfaceMesh resolved(split.vertices, split.faces);
+    if (inward)
+      resolved = with_flipped_orientation(resolved);
+    const double sign = inward ? -1.0 : 1.0;
+    SurfaceRepairStep step;
+    step.where = note.box.center();
+    step.size = note.box.diagonal().norm();
+    step.faces_removed = static_cast<std::size_t>(group.num_faces());
+    step.faces_added = static_cast<std::size_t>(resolved.num_faces());
+    step.description =
+        "split the surface along the curves where it crosses itself (" +
+        counted(pairs[root], "intersecting pair", "intersecting pairs") + ", " +
+        counted(b.faces_split, "face", "faces") + " cut), around " + point(step.where) + ", " +
+        number(step.size) + " across, and kept the boundary of the region it encloses (" +
+        counted(step.faces_removed, "face", "faces") + " replaced by " +
+        std::to_string(step.faces_added) + "): volume " + number(sign * b.signed_volume) +
+        " as given (the overlap of " + number(b.overlap_volume) + " counted twice), " +
+        number(sign * b.volume) + " after";
+    result.crossings_resolved.push_back(std::move(step));
+    result.resolved_volume_before += sign * b.signed_volume;
+    result.resolved_volume_after += sign * b.volume;
+    for (std::size_t f = 0; f < in.size(); ++f)
+      keep[f] = keep[f] && !in[f];
+    replacements.push_back(std::move(resolved));
+  }
+  if (replacements.empty())
+    return false;
+  Eigen::MatrixX3d vertices;
+  Eigen::MatrixX3i faces;
+  assemble(V, F, keep, replacements, vertices, faces);
+  result.vertices = std::move(vertices);
+  result.faces = std::move(faces);
+  return true;
+}
+
+/// The regions `left` still crossing: clusters of faces joined by its pairs, each boxed by
+/// the intersections of its pairs' face boxes (where their crossing segments lie), grown to
+/// the notes' regions it meets and merged where the boxes meet; and the region of the edges
+/// along which bodies still pass through each other.
+std::vector<DefectZone> unresolved_zones(
+    const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F, const SelfIntersections& left,
+    const std::vector<WindingNote>& notes, const std::string& why_left, bool crossings_left,
+    const std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>>& crossing_edges) {
+  struct Region {
+    Eigen::AlignedBox3d box;
+    std::size_t pairs = 0;
+    std::string why;
+  };
+  std::vector<Region> regions;
+  if (!left.face_pairs.empty()) {
+    UnionFind clusters(static_cast<std::size_t>(F.rows()));
+    for (const auto& [f, g] : left.face_pairs)
+      clusters.unite(static_cast<int>(f), static_cast<int>(g));
+    std::map<int, Region> by_root;
+    for (const auto& [f, g] : left.face_pairs) {
+      Region& r = by_root[clusters.find(static_cast<int>(f))];
+      r.box.extend(face_box(V, F, f).intersection(face_box(V, F, g)));
+      ++r.pairs;
+    }
+    for (auto& [root, r] : by_root)
+      regions.push_back(std::move(r));
+    // Pairs beyond those listed (a million) belong to the regions found.
+    if (left.pairs > left.face_pairs.size())
+      regions.front().pairs += left.pairs - left.face_pairs.size();
+  }
+  if (crossings_left && !crossing_edges.empty()) {
+    Region r;
+    for (const auto& [a, b] : crossing_edges) {
+      r.box.extend(a);
+      r.box.extend(b);
+    }
+    r.why = why_left;
+    regions.push_back(std::move(r));
+  }
+  for (Region& r : regions)
+    for (const WindingNote& note : notes)
+      if (note.box.intersects(r.box)) {
+        r.box.extend(note.box);
+        if (r.why.empty())
+          r.why = note.why;
+      }
+  // Merge regions whose boxes meet, until none do; beyond kMaxDefectZones regions (a surface
+  // crossing itself all over) one region holds them all.
+  if (regions.size() > kMaxDefectZones) {
+    for (std::size_t i = 1; i < regions.size(); ++i) {
+      regions.front().box.extend(regions[i].box);
+      regions.front().pairs += regions[i].pairs;
+      if (regions.front().why.empty())
+        regions.front().why = regions[i].why;
+    }
+    regions.resize(1);
+  }
+  for (bool merged = true; merged;) {
+    merged = false;
+    UnionFind meeting(regions.size());
+    for (std::size_t i = 0; i < regions.size(); ++i)
+      for (std::size_t j = i + 1; j < regions.size(); ++j)
+        if (regions[i].box.intersects(regions[j].box)) {
+          meeting.unite(static_cast<int>(j), static_cast<int>(i));
+          merged = true;
+        }
+    if (!merged)
+      break;
+    std::map<int, Region> by_root;
+    for (std::size_t i = 0; i < regions.size(); ++i) {
+      Region& into = by_root[meeting.find(static_cast<int>(i))];
+      into.box.extend(regions[i].box);
+      into.pairs += regions[i].pairs;
+      if (into.why.empty())
+        into.why = regions[i].why;
+    }
+    regions.clear();
+    for (auto& [root, r] : by_root)
+      regions.push_back(std::move(r));
+  }
+  std::vector<DefectZone> zones;
+  for (const Region& r : regions) {
+    DefectZone zone;
+    zone.what = r.pairs > 0 ? "the surface crosses itself"
+                            : "bodies pass through each other along edges they share";
+    zone.why = r.why.empty() ? why_left : r.why;
+    zone.box.min = r.box.min();
+    zone.box.max = r.box.max();
+    zone.pairs = r.pairs;
+    zones.push_back(std::move(zone));
+  }
+  std::sort(zones.begin(), zones.end(),
+            [](const DefectZone& a, const DefectZone& b) { return a.size() > b.size(); });
+  return zones;
 }
 
 }  // namespace
@@ -244,6 +483,20 @@ IntersectionRepair resolve_self_intersections(
   result.vertices = vertices;
   result.faces = faces;
   SelfIntersections current = found;
+  {
+    const std::vector<int> shell = shell_labels(faces);
+    for (const auto& [f, g] : found.face_pairs)
+      ++(shell[static_cast<std::size_t>(f)] == shell[static_cast<std::size_t>(g)]
+             ? result.pairs_within_shells
+             : result.pairs_between_shells);
+  }
+  // Shells crossing themselves first, whatever the size of the crossing, when the solid they
+  // bound is clear.
+  std::vector<WindingNote> notes;
+  bool winding_tried_all = false;
+  if (current.pairs > 0 && current.pairs <= current.face_pairs.size() &&
+      resolve_by_winding(result, current, true, notes))
+    current = find_self_intersections(result.vertices, result.faces);
   int ring = 0;
   int union_rounds = 0;
   bool crossings_pending = !crossing_edges.empty();
@@ -262,10 +515,6 @@ IntersectionRepair resolve_self_intersections(
            ? local
            : across)
           .push_back(pair);
-    if (ring == 0 && union_rounds == 0) {
-      result.pairs_within_shells = local.size();
-      result.pairs_between_shells = across.size();
-    }
 
     if (!local.empty()) {
       if (ring > kMaxIntersectionRings) {
@@ -450,16 +699,23 @@ IntersectionRepair resolve_self_intersections(
           (volume[static_cast<std::size_t>(s)] >= 0.0 ? positive : negative) = true;
         mixed = mixed || (positive && negative);
       }
-      if (mixed) {
+      UnitedShells united;
+      if (!mixed)
+        united = unite_shells(V, F, shell, group, members);
+      if (mixed || !united.ok) {
+        // The winding numbers of the crossing shells together may still tell the solid.
+        if (!winding_tried_all) {
+          winding_tried_all = true;
+          if (resolve_by_winding(result, current, false, notes)) {
+            current = find_self_intersections(result.vertices, result.faces);
+            continue;
+          }
+        }
         result.crossings_left = !crossing_edges.empty();
-        result.why_left = "shells of opposite orientation cross (a cavity wall crossing an "
-                          "outer skin?): which of them bounds a cavity cannot be told";
-        break;
-      }
-      UnitedShells united = unite_shells(V, F, shell, group, members);
-      if (!united.ok) {
-        result.crossings_left = !crossing_edges.empty();
-        result.why_left = "the union of the overlapping bodies failed (" + united.failure + ")";
+        result.why_left =
+            mixed ? "shells of opposite orientation cross (a cavity wall crossing an outer "
+                    "skin?): which of them bounds a cavity cannot be told"
+                  : "the union of the overlapping bodies failed (" + united.failure + ")";
         break;
       }
       for (const std::vector<int>& m : members) {
@@ -507,6 +763,10 @@ IntersectionRepair resolve_self_intersections(
     current = find_self_intersections(result.vertices, result.faces);
   }
   result.left = std::move(current);
+  if (result.left.pairs > 0 || result.crossings_left)
+    result.unresolved =
+        unresolved_zones(result.vertices, result.faces, result.left, notes, result.why_left,
+                         result.crossings_left, crossing_edges);
   return result;
 }
 

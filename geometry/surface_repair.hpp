@@ -11,6 +11,16 @@
 //                    kMaxHoleEdges edges is filled by a triangulation refined to the rim's
 //                    edge length and faired (bi-harmonic), so a patch on a curved surface
 //                    continues it smoothly and a planar rim gets a flat patch;
+//   self-crossings   a group of shells joined by crossing face pairs, one of which crosses
+//                    itself, is split along the curves where it crosses and replaced by the
+//                    boundary of the region it encloses, the points of positive winding
+//                    number (winding_number_boundary.hpp), whatever its size — when that is
+//                    the solid it was meant to bound: when no point has a negative winding
+//                    number (sheets overlap, as bodies of one shell that were not united).
+//                    Where the surface is inside out somewhere (a fold, a patch pushed
+//                    through the opposite wall: w = −1 over more than
+//                    kNegligibleNegativeVolume of the solid), the intended solid cannot be
+//                    told and the repairs below are tried instead;
 //   self-intersections within one shell
 //                    in each cluster of intersecting faces (connected through intersecting
 //                    pairs) the faces at most ℓ across are cut out, in successive attempts
@@ -27,7 +37,8 @@
 //                    orientation that cross (a cavity wall crossing an outer skin) are not
 //                    united: which of them is the cavity cannot be told.
 //
-// Anything larger than ℓ is left for the caller to refuse, with its size and the tolerance.
+// What is left is reported region by region (IntersectionRepair::unresolved) with the reason,
+// for the caller to measure around (mesh_preparation.hpp) or refuse.
 
 #include <Eigen/Core>
 #include <cstddef>
@@ -35,6 +46,7 @@
 #include <utility>
 #include <vector>
 
+#include "geometry/defect_zones.hpp"
 #include "geometry/self_intersection.hpp"
 
 namespace bemshape::geometry {
@@ -54,6 +66,13 @@ inline constexpr std::size_t kMaxHoleEdges = 500;
 /// attempts (0, 1, 2, 3): each attempt gives the refilled patch more room to clear the
 /// opposite surface.
 inline constexpr int kMaxIntersectionRings = 3;
+
+/// Volume of negative winding number, relative to the volume enclosed, below which a
+/// self-crossing surface still counts as one whose solid is clear: the pockets the
+/// rounding of the crossing curves' points can leave are of the order of the rounding
+/// (1e-16 relative) times the curves' length over the part's size; anything a modeller made
+/// is many orders of magnitude above 1e-9.
+inline constexpr double kNegligibleNegativeVolume = 1e-9;
 
 /// One change made to the surface.
 struct SurfaceRepairStep {
@@ -100,6 +119,11 @@ struct IntersectionRepair {
   std::size_t pairs_between_shells = 0;
   std::vector<SurfaceRepairStep> clusters_replaced;
   std::vector<SurfaceRepairStep> unions;
+  /// Groups of shells replaced by the boundary of the region they enclose, and their volumes
+  /// as given (∫ w dV: overlaps counted as often as covered) and after [model units³].
+  std::vector<SurfaceRepairStep> crossings_resolved;
+  double resolved_volume_before = 0.0;
+  double resolved_volume_after = 0.0;
   /// Signed volume after minus before the repairs of clusters within shells [model units³].
   double volume_change = 0.0;
   /// What is left: the pairs still intersecting, where, and why they were not repaired.
@@ -107,6 +131,9 @@ struct IntersectionRepair {
   /// Bodies crossing along shared edges (crossing_edges) that were not united.
   bool crossings_left = false;
   std::string why_left;
+  /// The regions still crossing (clusters of `left`'s pairs, and the edges of
+  /// crossings_left), each with why it was not repaired.
+  std::vector<DefectZone> unresolved;
 };
 
 /// Resolves the self-intersections `found` of a closed, consistently oriented mesh with at

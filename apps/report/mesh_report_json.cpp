@@ -13,6 +13,8 @@ const char* problem_status_label(geometry::MeshProblem::Status status) {
       return "REFUSED";
     case Status::note:
       return "note";
+    case Status::defect:
+      return "DEFECT";
   }
   return "";
 }

@@ -17,6 +17,7 @@
 #include "geometry/self_intersection.hpp"
 #include "geometry/surface_repair.hpp"
 #include "geometry/vertex_welding.hpp"
+#include "tests/support/damaged_meshes.hpp"
 
 using namespace bemshape;
 using namespace bemshape::geometry;
@@ -238,11 +239,28 @@ TEST_CASE("repair: two overlapping boxes become their union") {
   CHECK(p.report.bounding_box.max.isApprox(Eigen::Vector3d(3.25, 2, 2)));
 
   // The second box inside out: a cavity wall crossing the first box's skin, or an inverted
-  // body? That cannot be told, so it is refused.
-  const PreparedMesh q =
-      inspect_triangle_soup(soup_of(concatenated(a, with_flipped_orientation(b))), "boxes");
-  CHECK(!q.report.usable());
-  CHECK_THAT(q.report.refusal_message(), Catch::Contains("shells of opposite orientation cross"));
+  // body? That cannot be told (the winding number is −1 in B \ A), so the surface is used as
+  // given, the crossing region reported as a defect: the part of B's skin that crosses A's.
+  const TriangleSoup inverted = soup_of(concatenated(a, with_flipped_orientation(b)));
+  MeshPreparationOptions measure_defects;
+  measure_defects.measure_defects = true;
+  const PreparedMesh q = inspect_triangle_soup(inverted, "boxes", measure_defects);
+  CHECK(q.report.usable());
+  CHECK(has_problem(q.report, MeshProblem::Status::defect, "pairs of intersecting faces"));
+  REQUIRE(q.report.defects.size() == 1);
+  const DefectZone& zone = q.report.defects.front();
+  CHECK_THAT(zone.why, Catch::Contains("inside out over a region of volume 1.25"));
+  // The curves lie on A's face x = 2 and B's faces inside A; the irregular pieces are all of
+  // B's skin and A's face x = 2 (w = −1 or 0 beside them): the zone is within A ∪ B's box.
+  CHECK((zone.box.min.array() >= Eigen::Array3d(0, 0, 0) - 1e-12).all());
+  CHECK((zone.box.max.array() <= Eigen::Array3d(3.25, 2, 2) + 1e-12).all());
+  CHECK(zone.box.max.x() > 3.0);
+  MeshPreparationOptions refuse_defects;
+  refuse_defects.measure_defects = false;
+  const PreparedMesh refused = inspect_triangle_soup(inverted, "boxes", refuse_defects);
+  CHECK(!refused.report.usable());
+  CHECK_THAT(refused.report.refusal_message(),
+             Catch::Contains("shells of opposite orientation cross"));
 
   MeshPreparationOptions strict;
   strict.repair_surface = false;
@@ -307,10 +325,23 @@ TEST_CASE("repair: a vertex pushed slightly through the opposite wall is cut out
   CHECK(p.mesh.vertices().col(2).minCoeff() == 0.0);
   CHECK(p.mesh.vertices().col(2).maxCoeff() == 0.5);
 
-  // With the default repair length (2 % of 5.68 = 0.11) the crossing region is too large.
-  const PreparedMesh q = inspect_triangle_soup(soup_of(v, plate.faces()), "plate");
-  CHECK(!q.report.usable());
-  CHECK_THAT(q.report.refusal_message(),
+  // With the default repair length (2 % of 5.68 = 0.11) the crossing region is too large to
+  // cut out, and the fan below the bottom is inside out (w = −1): measured as given, the
+  // region reported around the pushed vertex.
+  MeshPreparationOptions measure_defects;
+  measure_defects.measure_defects = true;
+  const PreparedMesh q = inspect_triangle_soup(soup_of(v, plate.faces()), "plate", measure_defects);
+  CHECK(q.report.usable());
+  CHECK(has_problem(q.report, MeshProblem::Status::defect, "pairs of intersecting faces"));
+  REQUIRE(q.report.defects.size() == 1);
+  CHECK((q.report.defects.front().centre() - Eigen::Vector3d(2, 2, 0)).norm() < 0.3);
+  CHECK(q.report.defects.front().size() < 1.0);
+  CHECK_THAT(q.report.defects.front().why, Catch::Contains("inside out"));
+  MeshPreparationOptions refuse_defects;
+  refuse_defects.measure_defects = false;
+  const PreparedMesh r = inspect_triangle_soup(soup_of(v, plate.faces()), "plate", refuse_defects);
+  CHECK(!r.report.usable());
+  CHECK_THAT(r.report.refusal_message(),
              Catch::Contains("pairs of intersecting faces") &&
                  Catch::Contains("larger than the repair length") &&
                  Catch::Contains("the repair length 0.114 (2 % of the bounding-box diagonal)"));
@@ -340,4 +371,32 @@ TEST_CASE("repair: a small fin on an edge is removed as a loose piece") {
   CHECK(p.report.volume == Approx(1.0).epsilon(1e-12));
   CHECK(has_problem(p.report, MeshProblem::Status::repaired, "1 non-manifold edge"));
   CHECK(has_repair(p.report, "removed a loose open piece of 1 face"));
+}
+
+TEST_CASE("repair: a shell crossing itself over any size is replaced by the region it encloses") {
+  // The bars of the damaged-mesh corpus that pass through themselves (the crossing 9 % and
+  // 5 % of the diagonal, far above the repair length of 2 %): split along the crossing curves,
+  // the boundary of the points of positive winding number kept, which is the union of the
+  // bar's halves that CGAL's corefinement forms independently.
+  for (const testing::DamagedMesh& d : testing::damaged_meshes()) {
+    if (d.outcome != testing::DamageOutcome::resolved)
+      continue;
+    CAPTURE(d.name);
+    const PreparedMesh p = inspect_triangle_soup(soup_of(d.vertices, d.faces), d.name);
+    check_sound(p);
+    CHECK(p.report.shells == 1);
+    CHECK(p.report.defects.empty());
+    CHECK(has_problem(p.report, MeshProblem::Status::repaired,
+                      "pairs of intersecting faces within a shell"));
+    CHECK(has_repair(p.report, "split the surface along the curves where it crosses itself"));
+    CHECK(p.report.volume == Approx(d.intact.signed_volume()).epsilon(1e-9));
+    CHECK(p.report.area == Approx(d.intact.area()).epsilon(1e-9));
+    // The region is reported where the bar crosses itself, with the volume before and after.
+    bool located = false;
+    for (const MeshProblem& q : p.report.problems)
+      if (q.status == MeshProblem::Status::repaired &&
+          q.consequence.find("as given (overlaps counted twice)") != std::string::npos)
+        located = true;
+    CHECK(located);
+  }
 }
