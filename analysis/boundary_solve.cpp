@@ -16,9 +16,10 @@ namespace bemshape::analysis {
 
 void validate(const SolveOptions& options) {
   bem::TransmissionParameters::from_shape(options.h0, options.a);  // throws for h0, a
-  if (!(options.sharp_angle_degrees >= 0.0 && options.sharp_angle_degrees < 180.0))
+  if (options.sharp_angle_degrees &&
+      !(*options.sharp_angle_degrees >= 0.0 && *options.sharp_angle_degrees < 180.0))
     throw InputError("--sharp-angle must be in [0, 180) degrees, got " +
-                     number_text(options.sharp_angle_degrees, 3));
+                     number_text(*options.sharp_angle_degrees, 3));
   if (options.max_edge && !(std::isfinite(*options.max_edge) && *options.max_edge > 0.0))
     throw InputError("--max-edge must be a positive length, got " +
                      number_text(*options.max_edge, 3));
@@ -28,7 +29,7 @@ void validate(const SolveOptions& options) {
 }
 
 geometry::GradedMeshParameters wall_reading_mesh_parameters(double h0, double a,
-                                                            double sharp_angle_degrees) {
+                                                            std::optional<double> sharp_angle_degrees) {
   geometry::GradedMeshParameters p;
   p.h0 = h0;
   p.fine_edge = bem::TransmissionParameters::from_shape(h0, a).default_max_edge();
@@ -38,7 +39,9 @@ geometry::GradedMeshParameters wall_reading_mesh_parameters(double h0, double a,
   p.min_size_ratio = kWallMeshMinSizeRatio;
   p.min_chord_ratio = 0.0;
   p.chord_thickness_ratio = kWallMeshChordRatio;
-  p.crease_angle_degrees = sharp_angle_degrees;
+  p.crease_angle_degrees = sharp_angle_degrees.value_or(kWallMeshCreaseAngle);
+  p.normal_scale_ratio = kWallMeshNormalScale;
+  p.require_facet_strips = false;
   return p;
 }
 
@@ -98,7 +101,8 @@ BoundarySolve solve_boundary(const geometry::PreparedMesh& input, const SolveOpt
       return std::move(mesh.mesh);
     }
     geometry::RemeshingOptions remeshing;
-    remeshing.sharp_angle_degrees = options.sharp_angle_degrees;
+    remeshing.sharp_angle_degrees =
+        options.sharp_angle_degrees.value_or(geometry::RemeshingOptions{}.sharp_angle_degrees);
     return geometry::refine_to_edge_length(input.mesh, run.max_edge, remeshing, progress);
   });
 

@@ -74,9 +74,17 @@ inline constexpr double kWallMeshChordRatio = 0.01;
 /// close (GradedMeshParameters::min_size_ratio). TODO-measured.
 inline constexpr double kWallMeshMinSizeRatio = 0.5;
 
+/// Creases and tessellations of the wall reading's mesh are found from the face normals
+/// averaged over this times h0 with the part's edges kept (geometry/bilateral_normals.hpp):
+/// a scanned or noisy surface's roughness, details far below h0, makes no crease.
+inline constexpr double kWallMeshNormalScale = 0.5;
+/// ... and an edge is a crease where those normals differ by more than this [degrees]: the
+/// averaged normals of a noisy flat wall stay within about 2° of each other. TODO-measured.
+inline constexpr double kWallMeshCreaseAngle = 5.0;
+
 /// The graded mesh of the wall reading for h0 and a (SolverMeshRule::wall_reading).
 geometry::GradedMeshParameters wall_reading_mesh_parameters(double h0, double a,
-                                                            double sharp_angle_degrees);
+                                                            std::optional<double> sharp_angle_degrees);
 
 /// The PDE's parameters, the solver mesh and the solver: what every job that solves takes.
 struct SolveOptions {
@@ -86,8 +94,9 @@ struct SolveOptions {
   /// The default solver mesh when max_edge is empty.
   SolverMeshRule mesh_rule = SolverMeshRule::surface_values;
   /// Dihedral angle above which an edge is kept as a crease by the remesher [degrees], in
-  /// [0, 180) (geometry::RemeshingOptions::sharp_angle_degrees).
-  double sharp_angle_degrees = geometry::RemeshingOptions{}.sharp_angle_degrees;
+  /// [0, 180); empty: the rule's default (geometry::RemeshingOptions::sharp_angle_degrees
+  /// for surface values and --max-edge, kWallMeshCreaseAngle for the wall reading's mesh).
+  std::optional<double> sharp_angle_degrees;
   std::uint64_t max_memory_bytes = 0;  ///< memory the solve may use; 0 = what the machine has
   SolverChoice solver;
 };

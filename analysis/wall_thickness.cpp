@@ -55,6 +55,9 @@ constexpr Eigen::Index kLeafSize = 8;
 struct FaceResult {
   bool found = false;
   double depth = kNaN, mid_thickness = kNaN, rim_indicator = kNaN;
+  /// |n·e3| at p0 (e3 the across-wall eigenvector), NaN where λ2 is not below
+  /// kDistinctEigenvalueRatio·λ3 (the axis of a rod, the centre of a ball).
+  double alignment = kNaN;
   Eigen::Vector3d point = Eigen::Vector3d::Constant(kNaN);
   int evaluations = 0;
 };
@@ -99,6 +102,8 @@ class MidSurfaceSearch {
         result.mid_thickness =
             features::mid_surface_thickness(tensor.eigenvalues, parameters_.h0, parameters_.a);
         result.rim_indicator = v.s.norm() / std::abs(g0);
+        if (tensor.eigenvalues(1) < kDistinctEigenvalueRatio * tensor.eigenvalues(2))
+          result.alignment = std::abs(tensor.eigenvectors.col(2).dot(n));
         result.found = true;
         return result;
       }
@@ -180,6 +185,7 @@ WallThickness wall_thickness(const geometry::SurfaceMesh& mesh,
   result.depth.setConstant(nf, kNaN);
   result.mid_thickness.setConstant(nf, kNaN);
   result.rim_indicator.setConstant(nf, kNaN);
+  result.alignment.setConstant(nf, kNaN);
   std::atomic<Eigen::Index> done{0};
   std::uint64_t evaluations = 0;
 #pragma omp parallel reduction(+ : evaluations)
@@ -201,6 +207,7 @@ WallThickness wall_thickness(const geometry::SurfaceMesh& mesh,
         result.mid_point.row(f) = face.point.transpose();
         result.mid_thickness(f) = face.mid_thickness;
         result.rim_indicator(f) = face.rim_indicator;
+        result.alignment(f) = face.alignment;
       }
       const Eigen::Index count = ++done;
       if (progress && count % 256 == 0) {
@@ -220,7 +227,8 @@ WallThickness wall_thickness(const geometry::SurfaceMesh& mesh,
   for (Eigen::Index f = 0; f < nf; ++f) {
     found(f) = std::isfinite(result.depth(f));
     across(f) = std::isfinite(result.depth(f)) &&
-                !features::along_wall(result.mid_thickness(f), 2.0 * result.depth(f));
+                !features::along_wall(result.mid_thickness(f), 2.0 * result.depth(f)) &&
+                !features::oblique(result.alignment(f));
   }
   MidSurfacePairs pairs = mid_surface_pairs(mesh, result.mid_point, result.depth, found, across);
   result.pair_thickness = std::move(pairs.thickness);
@@ -230,7 +238,8 @@ WallThickness wall_thickness(const geometry::SurfaceMesh& mesh,
     if (std::isfinite(result.depth(f)))
       result.thickness(f) =
           features::wall_thickness(result.mid_thickness(f), 2.0 * result.depth(f),
-                                   result.rim_indicator(f), result.pair_thickness(f));
+                                   result.rim_indicator(f), result.pair_thickness(f),
+                                   result.alignment(f));
   result.filled_faces = (!result.thickness.array().isFinite()).count();
   fill_from_neighbours(mesh, result.thickness);
   // A shell where no face has a value of its own: h_mid where there is one, else not

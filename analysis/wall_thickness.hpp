@@ -27,6 +27,8 @@
 //   depth:           #F τ0 [model units]; NaN where none was found
 //   mid_thickness:   #F h_mid [model units]; NaN where none was found
 //   rim_indicator:   #F [1]; NaN where none was found
+//   alignment:       #F |n·e3| at p0 [1] (e3 the field's across-wall direction); NaN where
+//                    none was found or the direction is not defined (a rod's axis)
 //   pair_thickness:  #F [model units]; NaN where no pair was found
 
 #include <cstdint>
@@ -53,6 +55,7 @@ struct WallThickness {
   Eigen::VectorXd depth;
   Eigen::VectorXd mid_thickness;
   Eigen::VectorXd rim_indicator;
+  Eigen::VectorXd alignment;
   /// The separation of the two skins sharing the mid-surface point
   /// (analysis/mid_surface_pairs.hpp); NaN where the opposite skin has no face there.
   Eigen::VectorXd pair_thickness;

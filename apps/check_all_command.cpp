@@ -56,7 +56,7 @@ struct CheckAllOptions {
   std::optional<double> max_thickness;
   std::optional<double> min_region_area;
   std::optional<double> max_edge;
-  double sharp_angle = geometry::RemeshingOptions{}.sharp_angle_degrees;
+  std::optional<double> sharp_angle;  // empty: the solver mesh rule's default
   SolverChoiceText solver;
   std::uint64_t max_memory_bytes = 0;
 };
@@ -91,8 +91,6 @@ std::vector<std::string> result_arguments(const CheckAllOptions& o) {
                                    o.measure,
                                    "--edges",
                                    o.edges,
-                                   "--sharp-angle",
-                                   number_text(o.sharp_angle, kExactDigits),
                                    "--solver",
                                    o.solver.method,
                                    "--far-field",
@@ -106,6 +104,7 @@ std::vector<std::string> result_arguments(const CheckAllOptions& o) {
     }
   };
   add("--h0", o.h0);
+  add("--sharp-angle", o.sharp_angle);
   add("--max-thickness", o.max_thickness);
   add("--min-region-area", o.min_region_area);
   add("--max-edge", o.max_edge);

@@ -48,7 +48,7 @@ struct CompareOptions {
   std::optional<double> h0;
   double a = 0.2;
   std::optional<double> max_edge;
-  double sharp_angle = geometry::RemeshingOptions{}.sharp_angle_degrees;
+  std::optional<double> sharp_angle;  // empty: the solver mesh rule's default
   SolverChoiceText solver;  ///< --solver, --far-field, --tolerance
   long long max_probes = kDefaultMaxProbes;
   std::string report_path;
@@ -91,7 +91,7 @@ nlohmann::json report_json(const CompareOptions& options, const FemComparison& c
             {"kappa_cell", p.kappa() * options.cell},
             {"max_edge", c.boundary.max_edge},
             {"max_edge_rule", c.boundary.max_edge_rule},
-            {"sharp_angle", options.sharp_angle},
+            {"sharp_angle", options.sharp_angle.value_or(geometry::RemeshingOptions{}.sharp_angle_degrees)},
             {"max_probes", options.max_probes},
             {"probe_depth_cells", kProbeDepthCells},
             {"threads", omp_get_max_threads()},

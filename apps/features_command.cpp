@@ -47,7 +47,7 @@ struct FeaturesOptions {
   std::optional<double> h0;
   double a = 0.2;
   std::optional<double> max_edge;
-  double sharp_angle = geometry::RemeshingOptions{}.sharp_angle_degrees;
+  std::optional<double> sharp_angle;  // empty: the solver mesh rule's default
   std::optional<double> skeleton_width;
   int threads = 0;
   bool quiet = false;

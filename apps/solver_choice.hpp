@@ -48,7 +48,8 @@ inline analysis::SolverChoice solver_choice(const SolverChoiceText& text) {
 
 /// The options every solving command shares, as the library takes them.
 inline analysis::SolveOptions solve_options(double h0, double a, std::optional<double> max_edge,
-                                            double sharp_angle, const SolverChoiceText& solver,
+                                            std::optional<double> sharp_angle,
+                                            const SolverChoiceText& solver,
                                             std::uint64_t max_memory_bytes) {
   analysis::SolveOptions options;
   options.h0 = h0;

@@ -17,15 +17,16 @@ namespace bemshape::apps {
 /// default of what is read: analysis::SolverMeshRule) and --sharp-angle (crease angle of the
 /// remesher [degrees]).
 inline void add_solver_mesh_options(CLI::App& command, std::optional<double>& max_edge,
-                                    double& sharp_angle) {
+                                    std::optional<double>& sharp_angle) {
   command.add_option("--max-edge", max_edge,
                      "Element edge length of the solver mesh, in file units: the remesher's target, no edge longer than 1.3 times it (default: for thickness --measure wall a graded mesh whose elements follow the walls, at most 2*h0; otherwise 1.5*a*h0)");
   command
       .add_option("--sharp-angle", sharp_angle,
                   "Edges with a dihedral angle above this [degrees] are kept as creases when "
-                  "refining; 30 lets the remesher cross the facets of tessellated curved "
-                  "surfaces (fewer, better-shaped solver faces)")
-      ->capture_default_str();
+                  "remeshing (default: 1, every crease of the input; for thickness --measure wall "
+                  "5, measured between the face normals averaged over h0/2 with the part's edges "
+                  "kept, so that a scanned or noisy surface's roughness is no crease); 30 lets "
+                  "the remesher cross the facets of tessellated curved surfaces");
 }
 
 /// Registers --solver (auto | dense | hmatrix), --far-field (auto | hmatrix | nested) and

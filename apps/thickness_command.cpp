@@ -57,7 +57,7 @@ struct ThicknessOptions {
   std::optional<double> max_thickness;
   std::optional<double> min_region_area;
   std::optional<double> max_edge;
-  double sharp_angle = geometry::RemeshingOptions{}.sharp_angle_degrees;
+  std::optional<double> sharp_angle;  // empty: the solver mesh rule's default
   std::string output;
   std::string solver_output;
   std::string report_path;

@@ -144,11 +144,15 @@ int main(int argc, char** argv) {
       return argv[++i];
     };
     if (arg == "--wall-reading")  // the default mesh of the wall reading; later options change it
-      graded = analysis::wall_reading_mesh_parameters(1.0, 0.2, 1.0);
+      graded = analysis::wall_reading_mesh_parameters(1.0, 0.2, std::nullopt);
     else if (arg == "--thickness-ratio")
       graded.wall_thickness_ratio = std::stod(value());
     else if (arg == "--thin-wall-ratio")
       graded.thin_wall_ratio = std::stod(value());
+    else if (arg == "--crease-angle")
+      graded.crease_angle_degrees = std::stod(value());
+    else if (arg == "--normal-scale")
+      graded.normal_scale_ratio = std::stod(value());
     else if (arg == "--chord-wall-ratio")
       graded.chord_thickness_ratio = std::stod(value());
     else if (arg == "--min-chord-ratio")

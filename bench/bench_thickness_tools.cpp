@@ -28,12 +28,15 @@
 //             AABB tree: what inscribed-sphere tools (MeshLib) report
 //
 // --tools picks some of them (comma-separated, default all four). For each tool, against
-// the design (the part's labels, area-weighted over the tool's faces): wall time [s] and peak
+// the design (the part's labels, area-weighted over the tool's faces, each face labelled by
+// the nearest point of the clean part): wall time [s] and peak
 // resident memory [MB] of its process, faces it read on, median and 5th percentile of
 // reading/design on the nominal walls, the share of the nominal walls' area read below 0.9 of
 // their design ("low": what a check at 0.9·t flags wrongly), and per thin feature the share of
 // its area read below 0.9·t and the regions there (edge-connected sets of such faces, of at
 // least h0²/4 for the peers; bemshape's own regions). --profile adds bemshape's stages.
+// With BENCH_DUMP_DIR set, bemshape's solver faces are written there as <file>.csv with
+// their labels and the mid-surface search's readings.
 
 #include <CGAL/AABB_face_graph_triangle_primitive.h>
 #include <CGAL/AABB_traits.h>
@@ -50,6 +53,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <limits>
@@ -62,6 +66,7 @@
 #include "analysis/thickness_statistics.hpp"
 #include "apps/output/stl_writer.hpp"
 #include "core/errors.hpp"
+#include "geometry/closest_point.hpp"
 #include "geometry/mesh_preparation.hpp"
 #include "tests/support/labelled_parts.hpp"
 #include "tests/support/part_exports.hpp"
@@ -155,13 +160,29 @@ struct Score {
   std::map<std::string, double> stages;  ///< bemshape's stage times [s] and counts
 };
 
+/// The labels of the faces of `mesh` (the part's surface, perhaps a noisy copy): each face
+/// takes the label of the nearest point of the part's own surface, with the normal there, so
+/// that a noisy face next to a rib is labelled by where it lies on the design, not by where
+/// the noise moved its centroid.
+std::vector<testing::WallLabel> design_labels(const PartSpec& spec,
+                                              const geometry::SurfaceMesh& mesh) {
+  const geometry::ClosestPointQuery design(spec.part.mesh);
+  const geometry::ClosestPoints nearest = design.closest_points(mesh.face_centroids());
+  std::vector<testing::WallLabel> labels(std::size_t(mesh.num_faces()));
+  for (Eigen::Index f = 0; f < mesh.num_faces(); ++f)
+    labels[std::size_t(f)] = spec.part.label(
+        nearest.points.row(f).transpose(),
+        spec.part.mesh.face_normals().row(nearest.faces(f)).transpose());
+  return labels;
+}
+
 /// Scores `thickness` (#F of `mesh`, NaN where the tool has no reading) against the labels.
 /// `regions`: the tool's own thin regions if it has them; otherwise edge-connected sets of
 /// faces below 0.9·t of at least h0²/4 (bemshape's default speck area).
 void score(const PartSpec& spec, const geometry::SurfaceMesh& mesh,
            const Eigen::VectorXd& thickness, const std::vector<analysis::ThinRegion>* own,
            Score& s) {
-  const std::vector<testing::WallLabel> labels = spec.part.label_faces(mesh);
+  const std::vector<testing::WallLabel> labels = design_labels(spec, mesh);
   std::vector<double> ratio, area;
   double nominal_area = 0.0, low_area = 0.0;
   const std::size_t nfeatures = spec.part.features.size();
@@ -298,6 +319,27 @@ Eigen::VectorXd run_sphere(const geometry::SurfaceMesh& m) {
   return thickness;
 }
 
+/// Writes bemshape's solver faces with their labels and the mid-surface search's readings.
+void dump_faces(const std::string& path, const PartSpec& spec,
+                const analysis::ThicknessResult& result) {
+  const geometry::SurfaceMesh& mesh = result.boundary.solver_mesh;
+  const std::vector<testing::WallLabel> labels = design_labels(spec, mesh);
+  const analysis::WallThickness& w = result.wall;
+  const bool wall = w.depth.size() == mesh.num_faces();
+  std::FILE* out = std::fopen(path.c_str(), "w");
+  if (!out) return;
+  std::fprintf(out, "x,y,z,nx,ny,nz,area,role,t,thickness,mid_thickness,depth,rim_indicator,"
+                    "pair_thickness\n");
+  for (Eigen::Index f = 0; f < mesh.num_faces(); ++f)
+    std::fprintf(out, "%g,%g,%g,%g,%g,%g,%g,%s,%g,%g,%g,%g,%g,%g\n", mesh.face_centroids()(f, 0),
+                 mesh.face_centroids()(f, 1), mesh.face_centroids()(f, 2), mesh.face_normals()(f, 0),
+                 mesh.face_normals()(f, 1), mesh.face_normals()(f, 2), mesh.face_areas()(f),
+                 testing::to_string(labels[std::size_t(f)].role), labels[std::size_t(f)].thickness,
+                 result.thickness(f), wall ? w.mid_thickness(f) : NAN, wall ? w.depth(f) : NAN,
+                 wall ? w.rim_indicator(f) : NAN, wall ? w.pair_thickness(f) : NAN);
+  std::fclose(out);
+}
+
 /// One tool on one file, in this process: prints "key value" pairs on one line.
 int run_tool(const std::string& tool, const std::string& name, const std::string& file,
              long min_faces) {
@@ -313,6 +355,9 @@ int run_tool(const std::string& tool, const std::string& name, const std::string
     const analysis::ThicknessResult result = analysis::measure_thickness(file, options);
     s.seconds = seconds_since(start);
     score(spec, result.boundary.solver_mesh, result.thickness, &result.regions, s);
+    if (const char* dump = std::getenv("BENCH_DUMP_DIR"))
+      dump_faces(std::string(dump) + "/" + std::filesystem::path(file).stem().string() + ".csv",
+                 spec, result);
     for (const auto& [stage, seconds] : result.times.stages()) s.stages[stage] = seconds;
     const bem::SolveReport& report = result.boundary.solution.report;
     for (const auto& [stage, seconds] : report.assembly_stages) s.stages["assembly: " + stage] = seconds;

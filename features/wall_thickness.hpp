@@ -81,6 +81,17 @@ inline constexpr double kJunctionRatio = 1.05;
 /// h_twice above this multiple of h_mid means the search ran along the wall, not across it.
 inline constexpr double kAlongWallRatio = 1.5;
 
+/// The search direction −n and the field's across-wall direction e3 at p0 (the eigenvector of
+/// λ3) must agree within 30°: a face whose search crosses its wall obliquely — a small face
+/// on a noisy or chamfered edge, tilted halfway between two walls — reaches a zero of s·n
+/// that is neither wall's middle, and twice its depth reads neither wall (a 3 mm L-bracket's
+/// noisy outer edge: 2τ0 = 2.2).
+inline constexpr double kMinAlignment = 0.866;
+
+/// Whether the search crossed its wall obliquely (|n·e3| = `alignment` below kMinAlignment;
+/// NaN, where e3 is not defined, never is).
+inline bool oblique(double alignment) { return alignment < kMinAlignment; }
+
 /// Whether the search ran along the wall rather than across it (twice the depth above
 /// kAlongWallRatio·h_mid).
 inline bool along_wall(double mid_thickness, double twice_depth) {
@@ -92,23 +103,32 @@ inline double rim_weight(double rim_indicator) {
   return std::clamp((rim_indicator - kRimFrom) / (kRimFull - kRimFrom), 0.0, 1.0);
 }
 
-/// The wall thickness from the two readings and the rim indicator (see above) [model units].
-/// `twice_depth` may be NaN (no mid-surface point found along the normal): h_mid is used.
-/// NaN when the search ran along the wall (twice_depth > kAlongWallRatio·mid_thickness).
-/// `pair_thickness`, where finite, is the rim reading instead of twice_depth: the separation
-/// of the two skins that share the mid-surface point (analysis/mid_surface_pairs.hpp), exact
-/// on curved walls and tapers where twice the depth is not.
+/// The wall thickness of a face from its readings (see above) [model units]: h_mid inside a
+/// wall (rim indicator up to kRimFrom); towards a rim, blended into the separation of the two
+/// skins that share the mid-surface point (`pair_thickness`, analysis/mid_surface_pairs.hpp:
+/// exact on flat and curved walls and tapers up to their rims), which alone is taken from
+/// kRimFull on; the separation where h_mid exceeds it by more than kJunctionRatio (a
+/// junction). NaN — the face takes its neighbours' reading — where neither is the face's own
+/// wall: the search ran along the wall (`twice_depth` > kAlongWallRatio·h_mid) or crossed it
+/// obliquely (`alignment`, see oblique()), or the face is near a rim (rim indicator above
+/// kRimFrom) and has no pair. `twice_depth` may be NaN (no mid-surface point found along the
+/// normal): h_mid is used.
 inline double wall_thickness(double mid_thickness, double twice_depth, double rim_indicator,
-                             double pair_thickness = std::numeric_limits<double>::quiet_NaN()) {
+                             double pair_thickness = std::numeric_limits<double>::quiet_NaN(),
+                             double alignment = std::numeric_limits<double>::quiet_NaN()) {
+  constexpr double nan = std::numeric_limits<double>::quiet_NaN();
   if (!std::isfinite(twice_depth))
     return mid_thickness;
-  if (along_wall(mid_thickness, twice_depth))
-    return std::numeric_limits<double>::quiet_NaN();
+  if (along_wall(mid_thickness, twice_depth) || oblique(alignment))
+    return nan;
+  const bool paired = std::isfinite(pair_thickness);
   const double weight = rim_weight(rim_indicator);
-  const double rim_reading = std::isfinite(pair_thickness) ? pair_thickness : twice_depth;
-  const double reading = (1.0 - weight) * mid_thickness + weight * rim_reading;
+  if (weight > 0.0 && !paired)
+    return nan;
+  const double reading =
+      weight > 0.0 ? (1.0 - weight) * mid_thickness + weight * pair_thickness : mid_thickness;
   // Where walls meet, the pair's wall rather than the junction's larger sphere.
-  if (std::isfinite(pair_thickness) && reading > kJunctionRatio * pair_thickness)
+  if (paired && reading > kJunctionRatio * pair_thickness)
     return pair_thickness;
   return reading;
 }

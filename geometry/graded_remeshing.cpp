@@ -143,6 +143,8 @@ GradedMesh graded_solver_mesh(const SurfaceMesh& mesh, const GradedMeshParameter
   crease_options.smooth_angle_degrees = p.smooth_angle_degrees;
   crease_options.chord_tolerance = p.chord_tolerance_ratio * p.h0;
   crease_options.min_chord = p.min_chord_ratio * p.fine_edge;
+  crease_options.normal_scale = p.normal_scale_ratio * p.h0;
+  crease_options.require_facet_strips = p.require_facet_strips;
   const SurfaceCreases creases = find_surface_creases(mesh, crease_options);
   SizeFieldParameters field_parameters;
   field_parameters.fine_edge = p.fine_edge;

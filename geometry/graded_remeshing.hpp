@@ -127,6 +127,11 @@ struct GradedMeshParameters {
   /// c_δ: if > 0, the chord tolerance is c_δ times the wall under each smoothed edge instead
   /// of δ (SizeFieldParameters::chord_thickness_ratio).
   double chord_thickness_ratio = 0.0;
+  /// If > 0, creases and tessellations are found from the face normals filtered at this
+  /// times h0 (CreaseOptions::normal_scale): a noisy surface's edges at that scale.
+  double normal_scale_ratio = 0.0;
+  /// CreaseOptions::require_facet_strips.
+  bool require_facet_strips = true;
   /// An input whose edges are all within 4/3 of the field's h, whose angles are all above
   /// remeshing.min_angle_degrees and whose face count is at most this times the count the
   /// field asks for is returned as it is (0: always remesh).

@@ -248,6 +248,13 @@ MeshSizeField::MeshSizeField(const SurfaceMesh& mesh, const SurfaceCreases& crea
       add(a, b, p.fine_edge, SizeReason::crease);
   }
 
+  // The inward direction of the wall-thickness rays: the normals the creases were found with
+  // (filtered at a scale on a noisy surface, surface_creases.hpp), else the faces' own.
+  const Eigen::MatrixX3d& normals =
+      creases.normals.rows() == mesh.num_faces() ? creases.normals : mesh.face_normals();
+  // A ray's first hit nearer than this is the surface's own roughness, not a wall (a thin
+  // wall is one thinner than t_thin; a tenth of that is below what the PDE resolves there).
+  const double min_wall = kMinWallRatio * p.thin_wall;
   // Rays along −n against the surface: the wall-thickness estimate of the thin-wall, wall-
   // thickness and (with c_δ) chord sources.
   const bool chord_from_wall = p.chord_thickness_ratio > 0.0 && p.sample_spacing > 0.0;
@@ -266,8 +273,9 @@ MeshSizeField::MeshSizeField(const SurfaceMesh& mesh, const SurfaceCreases& crea
     // chord of length h across the edge then sags by at most c_δ·wall; beyond the reach of
     // the rays (no wall within h_max/c_t) by at most c_δ·reach.
     auto wall_under = [&](int f) {
-      const Vec3 n = mesh.face_normals().row(f);
-      return rays->first_hit(mesh.face_centroids().row(f).transpose(), -n, f, reach);
+      const Vec3 n = normals.row(f);
+      const Vec3 start = mesh.face_centroids().row(f).transpose() - min_wall * n;
+      return min_wall + rays->first_hit(start, -n, f, reach);
     };
 #pragma omp parallel for schedule(dynamic, 256)
     for (std::size_t i = 0; i < chord.size(); ++i) {
@@ -355,7 +363,7 @@ MeshSizeField::MeshSizeField(const SurfaceMesh& mesh, const SurfaceCreases& crea
       return k * 125u + static_cast<std::uint64_t>(d(0) * 25 + d(1) * 5 + d(2));
     };
     for (Eigen::Index f = 0; f < mesh.num_faces(); ++f) {
-      const Vec3 n = mesh.face_normals().row(f);
+      const Vec3 n = normals.row(f);
       if (n.squaredNorm() == 0.0)
         continue;
       std::vector<std::array<Vec3, 3>> stack{{mesh.corner(f, 0), mesh.corner(f, 1), mesh.corner(f, 2)}};
@@ -383,7 +391,8 @@ MeshSizeField::MeshSizeField(const SurfaceMesh& mesh, const SurfaceCreases& crea
     std::vector<double> wall(samples.size());
 #pragma omp parallel for schedule(dynamic, 256)
     for (std::size_t i = 0; i < samples.size(); ++i)
-      wall[i] = rays->first_hit(samples[i].x, -samples[i].n, samples[i].face, reach);
+      wall[i] = min_wall + rays->first_hit(samples[i].x - min_wall * samples[i].n, -samples[i].n,
+                                           samples[i].face, reach);
     for (std::size_t i = 0; i < samples.size(); ++i) {
       if (!std::isfinite(wall[i]))
         continue;

@@ -71,6 +71,10 @@ inline constexpr double kCreaseSpacingEdgeRatio = 1.5;
 inline constexpr double kMinSizeRatio = 1.0 / 16.0;
 
 
+/// Walls are measured from this fraction of t_thin below the surface on: a nearer hit is the
+/// roughness of a noisy surface (a scan), not a wall.
+inline constexpr double kMinWallRatio = 0.1;
+
 /// Spacing of the wall-thickness samples, as a fraction of h0.
 inline constexpr double kThicknessSampleSpacing = 0.5;
 

@@ -10,6 +10,7 @@
 #include <unordered_map>
 
 #include "core/errors.hpp"
+#include "geometry/bilateral_normals.hpp"
 
 namespace bemshape::geometry {
 namespace {
@@ -67,7 +68,9 @@ double longest_chord_within(double angle, double facet_width, double chord_toler
 SurfaceCreases find_surface_creases(const SurfaceMesh& mesh, const CreaseOptions& options) {
   const Eigen::MatrixX3i& F = mesh.faces();
   const Eigen::MatrixX3d& V = mesh.vertices();
-  const Eigen::MatrixX3d& N = mesh.face_normals();
+  const Eigen::MatrixX3d N = options.normal_scale > 0.0
+                                 ? bilateral_face_normals(mesh, options.normal_scale)
+                                 : mesh.face_normals();
   const int nf = static_cast<int>(F.rows());
   const int nv = static_cast<int>(V.rows());
 
@@ -138,6 +141,7 @@ SurfaceCreases find_surface_creases(const SurfaceMesh& mesh, const CreaseOptions
   }
 
   SurfaceCreases result;
+  result.normals = N;
   std::vector<char> is_crease(edges.size(), 0);
   for (std::size_t i = 0; i < edges.size(); ++i) {
     const EdgeFaces& e = edges[i];
@@ -149,7 +153,8 @@ SurfaceCreases find_surface_creases(const SurfaceMesh& mesh, const CreaseOptions
       if (tessellation && small_candidate(e)) {
         const auto A = static_cast<std::size_t>(facet_of[static_cast<std::size_t>(e.f0)]);
         const auto B = static_cast<std::size_t>(facet_of[static_cast<std::size_t>(e.f1)]);
-        if (A != B && facet_neighbours[A].size() >= 2 && facet_neighbours[B].size() >= 2) {
+        if (A != B && (!options.require_facet_strips ||
+                       (facet_neighbours[A].size() >= 2 && facet_neighbours[B].size() >= 2))) {
           tessellated = true;
           crossed.facet_width = std::min(2.0 * facet_area[A] / facet_candidate_length[A],
                                          2.0 * facet_area[B] / facet_candidate_length[B]);

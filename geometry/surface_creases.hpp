@@ -48,6 +48,14 @@ struct CreaseOptions {
   double chord_tolerance = 0.0;
   /// Smallest useful chord [model units]: an edge is smoothed only if h_δ ≥ this.
   double min_chord = 0.0;
+  /// If > 0, the dihedral angles are those of the face normals filtered at this scale [model
+  /// units] (bilateral_normals.hpp): the edges and tessellations of a noisy surface (a scan,
+  /// a coarse export) at that scale, not the tilts of its facets. 0: the faces' own normals.
+  double normal_scale = 0.0;
+  /// Rule 1 above (a facet strip on both sides) for smoothing; false smooths every candidate
+  /// up to θ_s the chord tolerance allows, lone shallow kinks too (with normals filtered at a
+  /// scale, a tessellated ball's facets merge in places, and the strips break up).
+  bool require_facet_strips = true;
 };
 
 /// An edge of the input mesh, by its vertex indices (a < b), with its dihedral angle.
@@ -82,6 +90,9 @@ struct SurfaceCreases {
   std::vector<char> corner;
   Eigen::VectorXi face_patch;  ///< #F: patch index (faces joined without crossing a crease)
   int patches = 0;
+  /// #F×3: the normals the dihedral angles were measured with (the faces' own, or filtered
+  /// at CreaseOptions::normal_scale), for the wall-thickness rays of the size field.
+  Eigen::MatrixX3d normals;
   int smoothed_edges() const;
 };
 

@@ -44,7 +44,7 @@ py::dict features(const py::handle& V, const py::handle& F, const py::handle& po
                      number_text(*max_memory, 6));
   analysis::FeaturesOptions job;
   job.solve = apps::solve_options(
-      h0, a, max_edge, sharp_angle.value_or(geometry::RemeshingOptions{}.sharp_angle_degrees),
+      h0, a, max_edge, sharp_angle,
       apps::SolverChoiceText{solver, tolerance, far_field},
       max_memory ? static_cast<std::uint64_t>(*max_memory) : 0);
   job.skeleton_width = skeleton_width;

@@ -83,7 +83,7 @@ py::dict thickness(const py::handle& V, const py::handle& F, std::optional<doubl
   job.h0_from_part = !h0 && !min_thickness;
   job.solve = apps::solve_options(
       h0 ? *h0 : min_thickness.value_or(1.0), a, max_edge,
-      sharp_angle.value_or(geometry::RemeshingOptions{}.sharp_angle_degrees),
+      sharp_angle,
       apps::SolverChoiceText{solver, tolerance, far_field}, memory_bytes(max_memory));
   if (measure)
     job.measure = analysis::thickness_measure(*measure);

@@ -100,7 +100,10 @@ TEST_CASE("ball: surface h_p and h_f within 2 % of the closed form, n_f along th
   const CsvTable wall = parse_csv(slurp(wall_csv));
   CHECK(wall.header_line() == "x,y,z,thickness,h_f,h_p,n_x,n_y,n_z,wall");
   CHECK(wall.col("thickness") == wall.col("wall"));
-  CHECK(wall.col("h_p") == table.col("h_p"));
+  // The wall reading's graded mesh has elements as long as the ball's radius allows (a fifth
+  // of --measure sphere's faces here): the surface values beside the wall come from it and
+  // are coarser than --measure sphere's (within 7 % of h_p instead of 2 %).
+  CHECK(max_relative_deviation(wall.col("h_p"), h_p) < 0.07);
   CHECK(max_relative_deviation(wall.col("wall"), 2.0 * kBallRadius) < 0.01);
 }
 

@@ -58,20 +58,41 @@ TEST_CASE("mid-surface thickness of a tube: within 0.15 % of the wall, where twi
   }
 }
 
-TEST_CASE("wall thickness: the mid-surface reading inside a wall, twice the depth near a rim") {
+TEST_CASE("wall thickness: the mid-surface reading inside a wall, the skins' separation near a rim") {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   using features::wall_thickness;
   CHECK(wall_thickness(4.0, nan, 2.0) == 4.0);                         // no mid-surface depth
-  CHECK(std::isnan(wall_thickness(4.0, 40.0, 1.0)));                   // searched along the wall
+  CHECK(std::isnan(wall_thickness(4.0, 40.0, 1.0, 4.0)));              // searched along the wall
   CHECK(wall_thickness(4.3, 4.0, 0.05) == 4.3);                        // within a wall
-  CHECK(wall_thickness(5.2, 4.0, features::kRimFull) == 4.0);          // at a rim
-  CHECK(wall_thickness(5.2, 4.0, 2 * features::kRimFull) == 4.0);
-  double previous = wall_thickness(5.2, 4.0, features::kRimFrom);
+  CHECK(wall_thickness(4.3, 4.0, 0.05, 4.2) == 4.3);                   // within a wall, paired
+  CHECK(wall_thickness(5.2, 4.0, features::kRimFull, 4.0) == 4.0);     // at a rim: the pair
+  CHECK(wall_thickness(5.2, 4.0, 2 * features::kRimFull, 4.0) == 4.0);
+  // At a rim without a pair, neither twice the depth nor h_mid is the wall: the neighbours'.
+  CHECK(std::isnan(wall_thickness(5.2, 4.0, features::kRimFull)));
+  CHECK(std::isnan(wall_thickness(5.2, 4.0, 0.5 * (features::kRimFrom + features::kRimFull))));
+  CHECK(wall_thickness(5.2, 4.0, features::kRimFrom) == 5.2);
+  // From h_mid to the pair between kRimFrom and kRimFull (5.2 is within kJunctionRatio of
+  // 5.0: no junction).
+  double previous = wall_thickness(5.2, 4.0, features::kRimFrom, 5.0);
   CHECK(previous == 5.2);
   for (double r = features::kRimFrom; r <= features::kRimFull; r += 0.01) {
-    const double w = wall_thickness(5.2, 4.0, r);
+    const double w = wall_thickness(5.2, 4.0, r, 5.0);
     CHECK(w <= previous);
-    CHECK(w >= 4.0);
+    CHECK(w >= 5.0);
     previous = w;
   }
+  CHECK(wall_thickness(5.2, 4.0, features::kRimFull, 5.0) == 5.0);
+  // A junction: h_mid more than kJunctionRatio above the pair takes the pair.
+  CHECK(wall_thickness(5.2, 4.0, features::kRimFrom, 4.0) == 4.0);
+}
+
+TEST_CASE("wall thickness: a search that crosses its wall obliquely has no reading of its own") {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  using features::wall_thickness;
+  // |n·e3| = cos 60°: a face tilted halfway between two walls.
+  CHECK(std::isnan(wall_thickness(4.0, 4.0, 0.05, 4.0, 0.5)));
+  CHECK(std::isnan(wall_thickness(4.0, 4.0, 0.05, nan, features::kMinAlignment - 1e-3)));
+  CHECK(wall_thickness(4.0, 4.0, 0.05, 4.0, features::kMinAlignment + 1e-3) == 4.0);
+  CHECK(wall_thickness(4.0, 4.0, 0.05, 4.0, 1.0) == 4.0);
+  CHECK(wall_thickness(4.0, 4.0, 0.05, 4.0, nan) == 4.0);  // e3 not defined: a rod, a ball
 }

@@ -1,6 +1,8 @@
 #include "tests/support/part_exports.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <random>
 
@@ -38,9 +40,15 @@ LabelledPart fine_export(const std::string& name, long min_faces) {
 geometry::SurfaceMesh with_normal_noise(const geometry::SurfaceMesh& mesh, double sigma,
                                         std::uint64_t seed) {
   Eigen::MatrixX3d normals = Eigen::MatrixX3d::Zero(mesh.num_vertices(), 3);
+  Eigen::VectorXd shortest =
+      Eigen::VectorXd::Constant(mesh.num_vertices(), std::numeric_limits<double>::infinity());
   for (Eigen::Index f = 0; f < mesh.num_faces(); ++f)
-    for (int k = 0; k < 3; ++k)
+    for (int k = 0; k < 3; ++k) {
       normals.row(mesh.faces()(f, k)) += mesh.face_areas()(f) * mesh.face_normals().row(f);
+      const double edge = (mesh.corner(f, (k + 1) % 3) - mesh.corner(f, k)).norm();
+      for (const int j : {k, (k + 1) % 3})
+        shortest(mesh.faces()(f, j)) = std::min(shortest(mesh.faces()(f, j)), edge);
+    }
   std::mt19937_64 generator(seed);
   // Uniform in (0, 1]: 53 random bits, never 0 (the logarithm below).
   const auto uniform = [&generator] { return (double(generator() >> 11) + 1.0) * 0x1.0p-53; };
@@ -50,7 +58,11 @@ geometry::SurfaceMesh with_normal_noise(const geometry::SurfaceMesh& mesh, doubl
     if (!(norm > 0.0)) continue;
     const double gaussian =
         std::sqrt(-2.0 * std::log(uniform())) * std::cos(2.0 * std::numbers::pi * uniform());
-    vertices.row(v) += sigma * gaussian / norm * normals.row(v);
+    // No vertex moves by more than kMaxNoiseEdgeFraction of its shortest edge, so that the
+    // noise never folds the surface through itself (a scan is rough, not self-crossing).
+    const double shift = std::clamp(sigma * gaussian, -kMaxNoiseEdgeFraction * shortest(v),
+                                    kMaxNoiseEdgeFraction * shortest(v));
+    vertices.row(v) += shift / norm * normals.row(v);
   }
   return geometry::SurfaceMesh(vertices, mesh.faces());
 }

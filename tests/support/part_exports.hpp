@@ -31,8 +31,12 @@ geometry::SurfaceMesh refined_to_faces(const geometry::SurfaceMesh& mesh, long m
 /// to at least `min_faces` triangles: the same solid, the same labels, a finer triangulation.
 LabelledPart fine_export(const std::string& name, long min_faces = kFineExportFaces);
 
+/// A noisy vertex moves by at most this fraction of its shortest edge.
+inline constexpr double kMaxNoiseEdgeFraction = 0.25;
+
 /// `mesh` with every vertex moved along its area-weighted vertex normal by an independent
-/// Gaussian of standard deviation `sigma` [model units], from a generator seeded with `seed`
+/// Gaussian of standard deviation `sigma` [model units] (at most kMaxNoiseEdgeFraction of the
+/// vertex's shortest edge: only the few vertices of a CAD sliver move less), from a generator seeded with `seed`
 /// (the same seed gives the same copy on every machine: the normal variates come from
 /// std::mt19937_64 by the Box–Muller transform, not from a library distribution). A labelled
 /// part's labels still apply to the noisy copy's faces while sigma is small against its walls.
