@@ -45,7 +45,8 @@ constexpr double kAlongWallCosine = 0.5;
 /// as long as the wall is thick lies within a panel or two of the surface, where most of the
 /// cost is the exact integrals of the panels the acceptance criterion does not admit: θ = 0.5
 /// admits clusters at twice their radius, where θ = 0.3 admits them at three times (the
-/// l-bracket's wall stage 2.5 → 1.5 s, the readings unchanged to 1e−5).
+/// l-bracket's wall stage 2.5 → 1.5 s, the readings unchanged to 1e−5). Those exact
+/// integrals are taken at the treecode's own accuracy (bem/evaluate/near_panel_integrals.hpp).
 constexpr int kTreecodeOrder = 10;
 constexpr double kTreecodeTheta = 0.5;
 /// Panels per leaf of the treecode's cluster tree: smaller leaves than the evaluation of
@@ -175,7 +176,7 @@ WallThickness wall_thickness(const geometry::SurfaceMesh& mesh,
   const std::vector<bem::Panel> panels = bem::make_panels(mesh);
   const bem::ClusterTree tree(panels, kLeafSize);
   const bem::LaplaceTreecode treecode(panels, tree, solution.q, solution.phi,
-                                      {kTreecodeOrder, kTreecodeTheta});
+                                      {kTreecodeOrder, kTreecodeTheta, true});
   const Eigen::MatrixX3d vertex_s = bem::reconstruct_vertex_values(mesh, solution.phi);
   const MidSurfaceSearch search(treecode, mesh.bounding_box().diagonal(), parameters);
 

@@ -1,9 +1,12 @@
 #include "bem/evaluate/laplace_treecode.hpp"
 
+#include "bem/evaluate/near_panel_integrals.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <string>
 
+#include "bem/evaluate/near_panel_integrals.hpp"
 #include "bem/kernels/laplace_kernel.hpp"
 #include "bem/quadrature/panel_integrals.hpp"
 #include "bem/quadrature/triangle_quadrature.hpp"
@@ -287,8 +290,10 @@ LaplaceTreecode::Value LaplaceTreecode::sum(const Eigen::Vector3d& x, Workspace&
       ++counts.expansions;
     } else if (cl.is_leaf()) {
       for (Eigen::Index t = cl.begin; t < cl.end; ++t) {
-        const PanelIntegrals l =
-            integrate_panel(laplace, (*panels_)[size_t(perm[size_t(t)])], x, kGradient);
+        const Panel& panel = (*panels_)[size_t(perm[size_t(t)])];
+        const PanelIntegrals l = parameters_.near_field_at_treecode_accuracy
+                                     ? near_panel_integrals(panel, x, kGradient)
+                                     : integrate_panel(laplace, panel, x, kGradient);
         v.winding -= l.double_layer;
         const Eigen::RowVector3d q = q_.row(t), phi = phi_.row(t);
         v.s += l.single_layer * q - l.double_layer * phi;

@@ -52,6 +52,11 @@ struct LaplaceTreecodeParameters {
   int order = 10;
   /// Acceptance parameter θ (0 < θ < 1): a cluster's expansion is used when ρ < θ·|x − c|.
   double theta = 0.3;
+  /// The panels of the leaves the criterion does not admit are integrated within
+  /// kNearPanelAccuracy (1e−6, bem/evaluate/near_panel_integrals.hpp) instead of the 1e−8 of
+  /// integrate_panel: for pairs (p, θ) whose own error is well above 1e−6 (θ = 0.5), about
+  /// half the cost of an evaluation near the surface.
+  bool near_field_at_treecode_accuracy = false;
 
   /// Largest order accepted: order 14 already reaches 5e−10 (docs/benchmarks.md), and the
   /// leaf moments of order 16 need a 9 × 9-point rule on every panel.
