@@ -130,8 +130,7 @@ PreparedMesh inspect_triangle_soup(const TriangleSoup& soup, const std::string& 
 
   throw_if_cancelled();
   report_progress(progress, "welding", 0.0);
-  const WeldResult weld =
-      weld_vertices(*input_vertices, soup.faces, options.weld_relative_tolerance);
+  WeldResult weld = weld_vertices(*input_vertices, soup.faces, options.weld_relative_tolerance);
   report.weld_tolerance = weld.tolerance;
   if (weld.merged_exact > 0)
     report.repairs.push_back("merged " + counted(weld.merged_exact, "vertex", "vertices") +
@@ -144,6 +143,17 @@ PreparedMesh inspect_triangle_soup(const TriangleSoup& soup, const std::string& 
   if (weld.unreferenced_removed > 0)
     report.repairs.push_back("dropped " + counted(weld.unreferenced_removed, "vertex", "vertices") +
                              " no face uses");
+
+  // Bodies exported on one grid without being united share faces once welded: their union,
+  // before the duplicates are dropped (which would leave holes where they overlap).
+  if (SharedFaceUnion united = unite_bodies_sharing_faces(weld.vertices, weld.faces); united.ok) {
+    add_problem(report, Status::repaired, 1, united.step.where,
+                "bodies sharing faces (the same triangles in both after welding)",
+                "replaced by their union, the boundary of the region they enclose (see the repairs)");
+    report.repairs.push_back(united.step.description);
+    weld.vertices = std::move(united.vertices);
+    weld.faces = std::move(united.faces);
+  }
 
   throw_if_cancelled();
   report_progress(progress, "validation", 0.2);

@@ -279,13 +279,16 @@ bool resolve_by_winding(IntersectionRepair& result, const SelfIntersections& cur
       notes.push_back(std::move(note));
       continue;
     }
-    if (b.negative_volume > kNegligibleNegativeVolume * std::max(b.volume, 0.0) ||
+    if (b.negative_volume >
+            kInsideOutShare * b.overlap_volume + kRoundingVolume * std::max(b.volume, 0.0) ||
         b.faces.rows() == 0) {
       note.why = "the surface is inside out over a region of volume " +
                  number(b.negative_volume) + " (winding number " +
-                 std::to_string(b.min_winding) +
-                 " there: a fold, or a patch pushed through the opposite wall), so the solid "
-                 "it was meant to bound cannot be told";
+                 std::to_string(b.min_winding) + " there" +
+                 (b.overlap_volume > 0.0
+                      ? ", beside an overlap of " + number(b.overlap_volume)
+                      : ": a fold, or a patch pushed through the opposite wall") +
+                 "), so the solid it was meant to bound cannot be told";
       notes.push_back(std::move(note));
       continue;
     }
@@ -472,6 +475,63 @@ HoleClosing close_small_holes(const Eigen::MatrixX3d& vertices, const Eigen::Mat
     result.edges_left += hole.edges;
     result.largest_left = std::max(result.largest_left, hole.extent);
   }
+  return result;
+}
+
+SharedFaceUnion unite_bodies_sharing_faces(const Eigen::MatrixX3d& vertices,
+                                           const Eigen::MatrixX3i& faces) {
+  SharedFaceUnion result;
+  // Duplicates (the same three vertices, either order) and the chain's closure.
+  std::map<std::array<int, 3>, int> seen;
+  std::map<std::pair<int, int>, int> net;
+  bool duplicates = false;
+  for (Eigen::Index f = 0; f < faces.rows(); ++f) {
+    std::array<int, 3> key{faces(f, 0), faces(f, 1), faces(f, 2)};
+    if (key[0] == key[1] || key[1] == key[2] || key[0] == key[2])
+      return result;
+    std::sort(key.begin(), key.end());
+    duplicates = ++seen[key] > 1 || duplicates;
+    for (int k = 0; k < 3; ++k) {
+      const int a = faces(f, k), b = faces(f, (k + 1) % 3);
+      net[{std::min(a, b), std::max(a, b)}] += a < b ? 1 : -1;
+    }
+  }
+  if (!duplicates)
+    return result;
+  for (const auto& [edge, count] : net)
+    if (count != 0)
+      return result;
+  // Faces on each other need no splitting (CGAL's autorefinement refuses edges of four
+  // faces); should the bodies also cross, the result crosses itself and the later stages
+  // find it.
+  const WindingNumberBoundary b = winding_number_boundary(vertices, faces, false);
+  if (!b.ok || b.faces.rows() == 0 ||
+      b.negative_volume >
+          kInsideOutShare * b.overlap_volume + kRoundingVolume * std::max(b.volume, 0.0))
+    return result;
+  const NonmanifoldSplit split = split_nonmanifold(b.vertices, b.faces);
+  if (!validate_mesh(split.vertices, split.faces).closed_manifold() ||
+      !split.crossing_edges.empty())
+    return result;
+  Eigen::AlignedBox3d box = b.irregular;
+  if (box.isEmpty())
+    for (Eigen::Index i = 0; i < vertices.rows(); ++i)
+      box.extend(vertices.row(i).transpose());
+  result.vertices = split.vertices;
+  result.faces = split.faces;
+  result.ok = true;
+  result.step.where = box.center();
+  result.step.size = box.diagonal().norm();
+  result.step.faces_removed = static_cast<std::size_t>(faces.rows());
+  result.step.faces_added = static_cast<std::size_t>(split.faces.rows());
+  result.step.description =
+      "united bodies sharing faces (the same triangles in both) into the boundary of the "
+      "region they enclose, around " + point(result.step.where) + ", " +
+      number(result.step.size) + " across (" +
+      counted(result.step.faces_removed, "face", "faces") + " replaced by " +
+      std::to_string(result.step.faces_added) + "): volume " + number(b.signed_volume) +
+      " as given (the overlap of " + number(b.overlap_volume) + " counted twice), " +
+      number(b.volume) + " after";
   return result;
 }
 

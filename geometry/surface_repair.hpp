@@ -15,12 +15,12 @@
 //                    itself, is split along the curves where it crosses and replaced by the
 //                    boundary of the region it encloses, the points of positive winding
 //                    number (winding_number_boundary.hpp), whatever its size — when that is
-//                    the solid it was meant to bound: when no point has a negative winding
-//                    number (sheets overlap, as bodies of one shell that were not united).
-//                    Where the surface is inside out somewhere (a fold, a patch pushed
-//                    through the opposite wall: w = −1 over more than
-//                    kNegligibleNegativeVolume of the solid), the intended solid cannot be
-//                    told and the repairs below are tried instead;
+//                    the solid it was meant to bound: when its crossing is an overlap of
+//                    sheets (w = 2, as bodies of one shell that were not united) and it is
+//                    nowhere inside out beyond slivers (kInsideOutShare). Where it is inside
+//                    out with no overlap (a patch pushed through the opposite wall: w = −1),
+//                    the intended solid cannot be told and the repairs below are tried
+//                    instead;
 //   self-intersections within one shell
 //                    in each cluster of intersecting faces (connected through intersecting
 //                    pairs) the faces at most ℓ across are cut out, in successive attempts
@@ -67,12 +67,16 @@ inline constexpr std::size_t kMaxHoleEdges = 500;
 /// opposite surface.
 inline constexpr int kMaxIntersectionRings = 3;
 
-/// Volume of negative winding number, relative to the volume enclosed, below which a
-/// self-crossing surface still counts as one whose solid is clear: the pockets the
-/// rounding of the crossing curves' points can leave are of the order of the rounding
-/// (1e-16 relative) times the curves' length over the part's size; anything a modeller made
-/// is many orders of magnitude above 1e-9.
-inline constexpr double kNegligibleNegativeVolume = 1e-9;
+/// When a self-crossing surface counts as one whose solid is clear: its crossing is an
+/// overlap of sheets (w = 2, as bodies of one shell never united), beside which any region
+/// of negative winding number is at most kInsideOutShare of the overlap's volume — the
+/// slivers inside a fold bent tighter than the sheet is thick (1e-4 to 1e-3 of the overlap
+/// on the folded strips of tests/support/damaged_meshes.hpp) — plus rounding, at most
+/// kRoundingVolume of the enclosed volume. A patch pushed through the opposite wall, a
+/// cavity wall crossing an outer skin or a fold of one skin leaves negative volume and no
+/// overlap: whether a dent or a hole was meant cannot be told.
+inline constexpr double kInsideOutShare = 0.01;
+inline constexpr double kRoundingVolume = 1e-9;
 
 /// One change made to the surface.
 struct SurfaceRepairStep {
@@ -110,6 +114,24 @@ struct HoleClosing {
 ///   repair_length: ℓ [model units].
 HoleClosing close_small_holes(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces,
                               double repair_length);
+
+/// Bodies of one soup that share faces once welded (the same triangle in both, as when two
+/// solids on one grid are exported without being united), replaced by the boundary of the
+/// region they enclose (winding_number_boundary): the union, where dropping the duplicates
+/// would leave holes and edges of three or four faces. Tried only when the welded soup has
+/// duplicate faces and is closed as a chain (each edge used as often in each direction);
+/// `ok` false (and the soup left to the other repairs) when it is not, or when the region
+/// is inside out anywhere beyond slivers (kInsideOutShare, kRoundingVolume).
+struct SharedFaceUnion {
+  Eigen::MatrixX3d vertices;
+  Eigen::MatrixX3i faces;
+  bool ok = false;
+  /// The change, for the report (volume as given, overlaps counted twice, and after).
+  SurfaceRepairStep step;
+};
+
+SharedFaceUnion unite_bodies_sharing_faces(const Eigen::MatrixX3d& vertices,
+                                           const Eigen::MatrixX3i& faces);
 
 struct IntersectionRepair {
   Eigen::MatrixX3d vertices;

@@ -139,9 +139,23 @@ double six_volume(const Eigen::MatrixX3d& v, const std::array<int, 3>& c) {
   return row(v, c[0]).dot(row(v, c[1]).cross(row(v, c[2])));
 }
 
-WindingNumberBoundary label(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces) {
+/// The faces as their own refinement: each its own piece.
+detail::CgalAutorefinement unrefined(const Eigen::MatrixX3d& vertices,
+                                     const Eigen::MatrixX3i& faces) {
+  detail::CgalAutorefinement same;
+  same.vertices = vertices;
+  same.faces = faces;
+  same.source.resize(static_cast<std::size_t>(faces.rows()));
+  std::iota(same.source.begin(), same.source.end(), Eigen::Index{0});
+  same.ok = true;
+  return same;
+}
+
+WindingNumberBoundary label(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces,
+                            bool refine) {
   WindingNumberBoundary result;
-  const detail::CgalAutorefinement refined = detail::cgal_autorefine(vertices, faces);
+  const detail::CgalAutorefinement refined =
+      refine ? detail::cgal_autorefine(vertices, faces) : unrefined(vertices, faces);
   if (!refined.ok) {
     result.failure = refined.failure;
     return result;
@@ -351,9 +365,9 @@ double hashed_unit(std::uint64_t x) {
 }  // namespace
 
 WindingNumberBoundary winding_number_boundary(const Eigen::MatrixX3d& vertices,
-                                              const Eigen::MatrixX3i& faces) {
-  WindingNumberBoundary first = label(vertices, faces);
-  if (first.ok || vertices.rows() == 0)
+                                              const Eigen::MatrixX3i& faces, bool refine) {
+  WindingNumberBoundary first = label(vertices, faces, refine);
+  if (first.ok || vertices.rows() == 0 || !refine)
     return first;
   // Sheets on each other, or a degenerate configuration CGAL does not handle: move every
   // vertex by a tiny pseudo-random amount and split again.
@@ -363,7 +377,7 @@ WindingNumberBoundary winding_number_boundary(const Eigen::MatrixX3d& vertices,
     for (int k = 0; k < 3; ++k)
       moved(i, k) += kGenericPerturbation * size *
                      hashed_unit(3 * static_cast<std::uint64_t>(i) + static_cast<std::uint64_t>(k));
-  WindingNumberBoundary second = label(moved, faces);
+  WindingNumberBoundary second = label(moved, faces, true);
   second.perturbed = true;
   if (!second.ok)
     second.failure = first.failure + "; after a generic perturbation: " + second.failure;

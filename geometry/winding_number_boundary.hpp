@@ -73,10 +73,13 @@ struct WindingNumberBoundary {
 };
 
 /// Ω₊ of the closed, consistently oriented surface (at most two faces per edge, one fan per
-/// vertex; vertices #V×3 [model units], faces #F×3) as described above. Never throws for
-/// the surface's geometry (ok == false with the reason); throws CancelledError when the run
-/// is cancelled.
+/// vertex; vertices #V×3 [model units], faces #F×3) as described above. With refine =
+/// false the surface is not split (nor perturbed): its faces must not cross, but may lie
+/// exactly on each other and meet in any number along an edge (welded bodies sharing faces);
+/// it must be closed as a chain (the faces' oriented edges cancel). Never throws for the
+/// surface's geometry (ok == false with the reason); throws CancelledError when the run is
+/// cancelled.
 WindingNumberBoundary winding_number_boundary(const Eigen::MatrixX3d& vertices,
-                                              const Eigen::MatrixX3i& faces);
+                                              const Eigen::MatrixX3i& faces, bool refine = true);
 
 }  // namespace bemshape::geometry

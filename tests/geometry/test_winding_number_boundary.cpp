@@ -198,7 +198,7 @@ TEST_CASE(
 
 TEST_CASE("winding boundary: bars of the corpus crossing themselves are their union") {
   for (const testing::DamagedMesh& d : testing::damaged_meshes()) {
-    if (d.outcome != testing::DamageOutcome::resolved)
+    if (d.outcome != testing::DamageOutcome::resolved || !d.exact_intact)
       continue;
     CAPTURE(d.name);
     const WindingNumberBoundary b = winding_number_boundary(d.vertices, d.faces);
@@ -214,5 +214,18 @@ TEST_CASE("winding boundary: bars of the corpus crossing themselves are their un
     const DefinitionCheck c = check_definition(d.vertices, d.faces, b, 16);
     CHECK(c.compared > 3000);
     CHECK(c.wrong == 0);
+  }
+}
+
+TEST_CASE("winding boundary: welded bodies sharing faces of the corpus are their union") {
+  const testing::DamagedMesh d = testing::damaged_mesh("overlapping_boxes");
+  for (const bool refine : {false, true}) {
+    CAPTURE(refine);
+    const WindingNumberBoundary b = winding_number_boundary(d.vertices, d.faces, refine);
+    INFO(b.failure);
+    REQUIRE(b.ok);
+    CHECK(b.volume == Approx(d.intact.signed_volume()).epsilon(1e-7));
+    CHECK(b.negative_volume == 0.0);
+    check_closed(b);
   }
 }

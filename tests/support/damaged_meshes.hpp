@@ -31,6 +31,24 @@ geometry::SurfaceMesh swept_bar(const std::vector<Eigen::Vector3d>& path, bool c
 geometry::SurfaceMesh swept_bar_part(const std::vector<Eigen::Vector3d>& path, bool closed,
                                      double width, double height, int first, int last);
 
+/// `mesh` with every edge longer than `edge` that passes within `radius` of `site` split at
+/// its midpoint, until none is left (faces with one, two or three such edges split into two,
+/// three or four): the same surface, finer around the site.
+geometry::SurfaceMesh refined_near(const geometry::SurfaceMesh& mesh, const Eigen::Vector3d& site,
+                                   double radius, double edge);
+
+/// `mesh` with the patch of its surface within `radius` of `site` on the skin whose outward
+/// normal is `normal` there pushed inward, through the wall of thickness `wall` behind it, to
+/// `overshoot` beyond the opposite skin at the centre: each vertex x of the skin within the
+/// radius moves by −(wall + overshoot)·(1 − (|x − site|/radius)²)·n(x), n the skin's normal
+/// (`normal` on a flat skin, the radial direction from `centre` on a sphere if `spherical`).
+/// The faces keep their vertices, so the surface crosses itself where the patch passes the
+/// opposite skin.
+geometry::SurfaceMesh pushed_through(const geometry::SurfaceMesh& mesh, const Eigen::Vector3d& site,
+                                     const Eigen::Vector3d& normal, double radius, double wall,
+                                     double overshoot, bool spherical = false,
+                                     const Eigen::Vector3d& centre = Eigen::Vector3d::Zero());
+
 /// What bemshape must do with a damaged mesh.
 enum class DamageOutcome {
   /// Split along the curves where it crosses itself and replaced by the boundary of the
@@ -38,11 +56,14 @@ enum class DamageOutcome {
   resolved,
   /// Bodies united (crossing shells).
   united,
+  /// A crossing within the repair length cut out and refilled, a solid recovered (a tip
+  /// pushed through the opposite wall may stay as a small shell of its own).
+  refilled,
   /// Measured on the surface as given, the crossing region reported and marked `defect`.
   measured_around
 };
 
-/// "resolved", "united", "measured around".
+/// "resolved", "united", "refilled", "measured around".
 const char* to_string(DamageOutcome outcome);
 
 struct DamagedMesh {
@@ -53,6 +74,9 @@ struct DamagedMesh {
   Eigen::MatrixX3i faces;
   /// The part before the damage (closed, outward), for comparing thicknesses away from it.
   geometry::SurfaceMesh intact;
+  /// Whether a solid recovered must be `intact` itself (volume and area to rounding): false
+  /// where the damage changed the shape around it (a fold).
+  bool exact_intact = true;
   /// Centre and size (bounding-box diagonal) of the damaged region [model units].
   Eigen::Vector3d site = Eigen::Vector3d::Zero();
   double size = 0.0;
