@@ -250,18 +250,18 @@ TEST_CASE(
 TEST_CASE("check-all: --timeout stops a slow part (verdict timeout) and not the others") {
   const fs::path parts = scratch_folder() / "timeout";
   fs::create_directories(parts);
-  // 23,120 faces at --max-edge 0.02: minutes of solving; the cube, 456 solver faces, takes
-  // half a second.
+  // About 36,000 faces at --max-edge 0.016: minutes of solving, far beyond the 8 s limit on
+  // any machine; the cube, about 700 solver faces, takes half a second.
   const geometry::SurfaceMesh ball =
-      geometry::make_geodesic_sphere(0.5, geometry::geodesic_frequency_for_edge(0.5, 0.02));
+      geometry::make_geodesic_sphere(0.5, geometry::geodesic_frequency_for_edge(0.5, 0.016));
   output::write_binary_stl((parts / "a_slow_ball.stl").string(), ball.vertices(), ball.faces());
   const geometry::SurfaceMesh cube =
-      geometry::make_box(Eigen::Vector3d::Constant(-0.05), Eigen::Vector3d::Constant(0.05), 0.02);
+      geometry::make_box(Eigen::Vector3d::Constant(-0.05), Eigen::Vector3d::Constant(0.05), 0.016);
   output::write_binary_stl((parts / "b_small_cube.stl").string(), cube.vertices(), cube.faces());
   const fs::path reports = scratch_folder() / "timeout_reports";
   const Run r = run_bemshape("check-all " + quoted(parts) + " --reports " + quoted(reports) +
-                             " --jobs 2 --timeout 4 --min-thickness 0.05 --h0 0.3 --max-edge "
-                             "0.02 --quiet");
+                             " --jobs 2 --timeout 8 --min-thickness 0.05 --h0 0.3 --max-edge "
+                             "0.016 --quiet");
   CAPTURE(r.out, r.err);
   CHECK(r.exit_code == 2);
   const std::vector<nlohmann::json> records = read_summary(reports / "summary.jsonl");
@@ -269,7 +269,7 @@ TEST_CASE("check-all: --timeout stops a slow part (verdict timeout) and not the 
   CHECK(records[0]["verdict"] == "timeout");
   CHECK(records[0]["exit_code"] == 3);
   CHECK(records[0]["error"].get<std::string>().find("--timeout") != std::string::npos);
-  CHECK(records[0]["seconds"].get<double>() >= 4.0);
+  CHECK(records[0]["seconds"].get<double>() >= 8.0);
   CHECK(records[1]["verdict"] == "pass");
   CHECK(temporaries_under(reports) == 0);
 }
