@@ -36,6 +36,8 @@ ThicknessResult measure(ThicknessResult result, const ThicknessOptions& given,
     options.solve.mesh_rule = SolverMeshRule::wall_reading;
   result.boundary = solve_boundary(result.input, options.solve, result.times, progress);
   const geometry::SurfaceMesh& solver_mesh = result.boundary.solver_mesh;
+  result.defect_faces =
+      geometry::faces_near_defects(solver_mesh, result.input.report.defects, h0);
   features::FeatureParameters parameters;
   parameters.h0 = h0;
   parameters.a = options.solve.a;

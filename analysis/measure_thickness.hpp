@@ -107,6 +107,10 @@ struct ThicknessResult {
   std::vector<ThickRegion> thick_regions;  ///< above max_thickness, thickest first
   double min_region_area = 0.0;     ///< the area below which regions were dropped
   AreaHistogram histogram;          ///< area per thickness range, at most kHistogramBins
+  /// defect_faces[f] = 1 for the solver faces within h0 of a region where the input crosses
+  /// itself and was measured as given (input.report.defects, geometry::faces_near_defects);
+  /// all 0 when there is none.
+  std::vector<char> defect_faces;
   /// Solver faces whose thickness h0(1/f − a) came out negative and was clamped to 0
   /// (features/thickness.hpp): f above 1/a, which only discretisation error produces.
   Eigen::Index clamped_faces = 0;

@@ -59,7 +59,14 @@ void print_report(const MeshReport& r, std::ostream& out) {
   out << "repairs:" << (r.repairs.empty() ? " none\n" : "\n");
   for (const std::string& repair : r.repairs)
     out << "  - " << repair << '\n';
-  out << "result: " << (r.usable() ? "usable" : "refused") << '\n';
+  out << "result: "
+      << (!r.usable() ? "refused"
+          : r.defects.empty()
+              ? "usable"
+              : "usable with " + std::to_string(r.defects.size()) + " defect region" +
+                    (r.defects.size() == 1 ? "" : "s") +
+                    " (the surface crosses itself there; measured as given, marked 'defect')")
+      << '\n';
 }
 
 void run_check(const CheckOptions& options, int& exit_code) {
@@ -94,7 +101,8 @@ void register_check_command(CLI::App& app, int& exit_code) {
       "Read a mesh file, validate it as the boundary of a solid, repair what is safely "
       "repairable (coincident vertices, degenerate and duplicate faces, orientation) and print "
       "the report: faces, vertices, shells, cavities, volume, area, bounding box (in the file's "
-      "units), every problem found and every repair. Exit code 0 if the mesh is usable, 2 if "
+      "units), every problem found and every repair. Exit code 0 if the mesh is usable (also with "
+      "defect regions, where it crosses itself and is measured as given), 2 if "
       "it is refused or unreadable.");
   check->add_option("INPUT", options->input,
                     "Mesh file: .stl (ASCII or binary), .obj, .off, .ply, .3mf")

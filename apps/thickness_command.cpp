@@ -106,9 +106,33 @@ void require_writable_folder(const std::string& path, const char* option) {
     throw InputError(path + ": the folder of " + option + " does not exist");
 }
 
-/// Writes `v` (features on `mesh`) to `path` in `format`.
+/// 1 for every vertex of a face with faces[f] != 0.
+std::vector<char> vertex_flags(const geometry::SurfaceMesh& mesh, const std::vector<char>& faces) {
+  std::vector<char> flags(static_cast<std::size_t>(mesh.num_vertices()), 0);
+  for (Eigen::Index f = 0; f < mesh.num_faces(); ++f)
+    if (faces[static_cast<std::size_t>(f)] != 0)
+      for (int k = 0; k < 3; ++k)
+        flags[static_cast<std::size_t>(mesh.faces()(f, k))] = 1;
+  return flags;
+}
+
+Eigen::MatrixXd as_column(const std::vector<char>& flags) {
+  Eigen::MatrixXd column(static_cast<Eigen::Index>(flags.size()), 1);
+  for (std::size_t i = 0; i < flags.size(); ++i)
+    column(static_cast<Eigen::Index>(i), 0) = flags[i] != 0 ? 1.0 : 0.0;
+  return column;
+}
+
+/// Writes `v` (features on `mesh`) to `path` in `format`. `defect_faces` (#F of `mesh`, or
+/// empty when the input has no defect region) adds the field `defect`: 1 on the faces within
+/// h0 of a region where the surface crosses itself and was measured as given, and on their
+/// vertices.
 void write_output(const std::string& path, OutputFormat format, const geometry::SurfaceMesh& mesh,
-                  const SurfaceFeatures& v, const ThicknessResult& result) {
+                  const SurfaceFeatures& v, const ThicknessResult& result,
+                  const std::vector<char>& defect_faces) {
+  const std::vector<char> defect_vertices =
+      defect_faces.empty() ? std::vector<char>{} : vertex_flags(mesh, defect_faces);
+  const Eigen::MatrixXd vd = as_column(defect_vertices), fd = as_column(defect_faces);
   switch (format) {
     case OutputFormat::none:
       return;
@@ -128,6 +152,10 @@ void write_output(const std::string& path, OutputFormat format, const geometry::
         point_fields.push_back({"wall", &vw});
         cell_fields.push_back({"wall", &fw});
       }
+      if (!defect_faces.empty()) {
+        point_fields.push_back({"defect", &vd});
+        cell_fields.push_back({"defect", &fd});
+      }
       output::write_vtp(path, mesh.vertices(), mesh.faces(), point_fields, cell_fields);
       return;
     }
@@ -138,14 +166,19 @@ void write_output(const std::string& path, OutputFormat format, const geometry::
       colouring.comment =
           "bemshape " + result.measure_column + " thickness, colours viridis from " +
           number_text(colouring.colour_minimum, 6) + " to " +
-          number_text(colouring.colour_maximum, 6) + "; lengths in the input file's units";
+          number_text(colouring.colour_maximum, 6) + "; lengths in the input file's units" +
+          (defect_faces.empty() ? ""
+                                : "; magenta: within h0 of a region where the surface crosses "
+                                  "itself, measured as given (property defect)");
+      colouring.defect = defect_vertices;
       output::write_ply(path, mesh.vertices(), mesh.faces(), v.vertex.col(result.column),
                         colouring);
       return;
     }
     case OutputFormat::csv: {
       const bool wall = result.column == kColumnWall;
-      Eigen::MatrixXd rows(mesh.num_vertices(), wall ? 10 : 9);
+      const bool defect = !defect_faces.empty();
+      Eigen::MatrixXd rows(mesh.num_vertices(), (wall ? 10 : 9) + (defect ? 1 : 0));
       rows.leftCols(3) = mesh.vertices();
       rows.col(3) = v.vertex.col(result.column);
       rows.col(4) = v.vertex.col(kColumnHf);
@@ -156,6 +189,10 @@ void write_output(const std::string& path, OutputFormat format, const geometry::
       if (wall) {
         rows.col(9) = v.vertex.col(kColumnWall);
         names.push_back("wall");
+      }
+      if (defect) {
+        rows.col(rows.cols() - 1) = vd.col(0);
+        names.push_back("defect");
       }
       output::write_csv(path, names, rows);
       return;
@@ -217,8 +254,32 @@ void print_report(std::ostream& out, const ThicknessOptions& options, double h0,
         << "               only discretisation error produces that. The solver mesh is probably\n"
         << "               too coarse for h0 there; try a smaller --max-edge, or an h0 nearer\n"
         << "               the walls' thickness\n";
+  const std::vector<geometry::DefectZone>& defects = result.input.report.defects;
+  if (!defects.empty()) {
+    double marked = 0.0;
+    std::size_t faces = 0;
+    for (Eigen::Index f = 0; f < run.solver_mesh.num_faces(); ++f)
+      if (result.defect_faces[static_cast<std::size_t>(f)] != 0) {
+        marked += run.solver_mesh.face_areas()(f);
+        ++faces;
+      }
+    out << "  warning      the surface crosses itself in " << defects.size() << " region"
+        << (defects.size() == 1 ? "" : "s")
+        << " that could not be repaired; measured on the surface as given there:\n";
+    for (std::size_t i = 0; i < std::min(defects.size(), kPrintedRegions); ++i)
+      out << "    " << i + 1 << ". " << number_text(defects[i].size(), 6) << " across around "
+          << point_text(defects[i].centre()) << ": " << defects[i].why << '\n';
+    if (defects.size() > kPrintedRegions)
+      out << "    ... " << defects.size() - kPrintedRegions << " more in the JSON report (--report)\n";
+    out << "               " << faces << " solver face" << (faces == 1 ? "" : "s")
+        << " within h0 of them (area " << number_text(marked, 6) << " of "
+        << number_text(run.solver_mesh.area(), 6)
+        << ") are marked 'defect' in the outputs: the thickness there is not the part's\n";
+  }
   if (options.min_thickness) {
     const double threshold = *options.min_thickness;
+    if (!defects.empty())
+      out << "  check        (rests on the surface as given around the defect regions above)\n";
     if (result.regions.empty()) {
       out << "  check        PASS: no wall thinner than " << number_text(threshold, 6) << '\n';
     } else {
@@ -312,27 +373,43 @@ void run_thickness(const ThicknessOptions& options, int& exit_code) {
   if (format != OutputFormat::none)
     times.time("write", [&] {
       report_progress(display.callback(), "write " + lower_extension(options.output), 0.0);
-      write_output(options.output, format, result.input.mesh, result.input_features, result);
+      write_output(options.output, format, result.input.mesh, result.input_features, result,
+                   result.input.report.defects.empty()
+                       ? std::vector<char>{}
+                       : geometry::faces_near_defects(result.input.mesh,
+                                                      result.input.report.defects, h0));
     });
   if (solver_format != OutputFormat::none)
     times.time("write", [&] {
       report_progress(display.callback(), "write solver mesh", 0.0);
       write_output(options.solver_output, solver_format, result.boundary.solver_mesh,
-                   result.solver_features, result);
+                   result.solver_features, result,
+                   result.input.report.defects.empty() ? std::vector<char>{}
+                                                       : result.defect_faces);
     });
   if (!options.html_path.empty())
     times.time("write", [&] {
       report_progress(display.callback(), "write HTML report", 0.0);
-      output::write_html_report(
-          options.html_path,
-          thickness_html_report({fs::path(options.input).filename().string(),
-                                 result.measure_column, &result.boundary.solver_mesh,
-                                 result.solver_features.vertex.col(result.column),
-                                 result.thickness, features::kMaxThicknessFactor * h0,
-                                 result.statistics, result.regions, options.min_thickness,
-                                 html_parameters(options, h0, result)}));
+      ThicknessHtmlInput html{fs::path(options.input).filename().string(),
+                              result.measure_column, &result.boundary.solver_mesh,
+                              result.solver_features.vertex.col(result.column),
+                              result.thickness, features::kMaxThicknessFactor * h0,
+                              result.statistics, result.regions, options.min_thickness,
+                              html_parameters(options, h0, result), {}, {}};
+      html.defects = result.input.report.defects;
+      html.defect_faces = result.defect_faces;
+      output::write_html_report(options.html_path, thickness_html_report(html));
     });
   display.finish();
+  // Never a silent answer on a broken part: the defect regions also go to stderr, for runs
+  // whose stdout nobody reads.
+  if (const auto& defects = result.input.report.defects; !defects.empty())
+    std::cerr << "bemshape: warning: " << options.input << ": the surface crosses itself in "
+              << defects.size() << " region" << (defects.size() == 1 ? "" : "s")
+              << " that could not be repaired (the largest " << number_text(defects[0].size(), 6)
+              << " across around " << point_text(defects[0].centre())
+              << "); measured on the surface as given there, the faces within h0 marked "
+                 "'defect'\n";
   const double peak_mb = double(peak_resident_bytes()) / 1e6;
   if (!options.report_path.empty()) {
     const ThicknessRunNames names{

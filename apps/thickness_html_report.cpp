@@ -66,6 +66,26 @@ output::HtmlReport thickness_html_report(const ThicknessHtmlInput& input) {
       input.face_thickness, mesh.face_areas(), kHtmlHistogramBins, input.unmeasurable_from);
   report.histogram = {h.edges, h.area, h.other_area};
   report.parameters = input.parameters;
+  for (const geometry::DefectZone& zone : input.defects) {
+    // Appended piece by piece: GCC 12 warns falsely (-Wrestrict) on chains of + here,
+    // point_text's included.
+    std::string text = zone.what;
+    text += ", ";
+    text += number_text(zone.size(), 6);
+    text += " across around ";
+    text += '(';
+    for (int k = 0; k < 3; ++k) {
+      text += number_text(zone.centre()(k), 6);
+      text += k < 2 ? ", " : ")";
+    }
+    text += ", not repaired: ";
+    text += zone.why;
+    text += ". Measured on the surface as given there.";
+    report.defects.push_back({std::move(text), zone.centre(), zone.size()});
+  }
+  for (std::size_t f = 0; f < input.defect_faces.size(); ++f)
+    if (input.defect_faces[f] != 0)
+      report.defect_faces.push_back(static_cast<int>(f));
   if (input.min_thickness) {
     const std::string threshold = number_text(*input.min_thickness, 6);
     if (input.thin_regions.empty()) {

@@ -13,6 +13,7 @@
 
 #include "apps/output/html_report.hpp"
 #include "analysis/thickness_statistics.hpp"
+#include "geometry/defect_zones.hpp"
 #include "geometry/surface_mesh.hpp"
 
 namespace bemshape::apps {
@@ -31,6 +32,10 @@ struct ThicknessHtmlInput {
   std::vector<analysis::ThinRegion> thin_regions;  ///< with their face lists, most severe first
   std::optional<double> min_thickness;   ///< --min-thickness
   std::vector<std::pair<std::string, std::string>> parameters;
+  /// Regions where the input crosses itself, measured as given, and the solver faces within
+  /// h0 of them (#F of *mesh, or empty): drawn in the defect colour and listed.
+  std::vector<geometry::DefectZone> defects;
+  std::vector<char> defect_faces;
 };
 
 output::HtmlReport thickness_html_report(const ThicknessHtmlInput& input);

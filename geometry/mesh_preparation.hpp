@@ -110,7 +110,7 @@ struct MeshPreparationOptions {
   /// Where a self-crossing cannot be repaired, keep the surface as given, list the region in
   /// MeshReport::defects (status defect) and stay usable, so that the analysis measures
   /// around it; false refuses such a mesh.
-  bool measure_defects = false;
+  bool measure_defects = true;
   /// Scale the coordinates to millimetres when the file records its unit (3MF); a file
   /// without a unit (STL, OBJ, OFF, PLY) is used as stored, with a note. Off by default:
   /// lengths stay in the file's units, and the report names the unit.

@@ -16,6 +16,10 @@ struct Rgb {
   friend bool operator==(const Rgb&, const Rgb&) = default;
 };
 
+/// The colour of faces and vertices near a defect region (a surface that crosses itself,
+/// measured as given): magenta, which viridis never reaches, so it reads as "not the map".
+inline constexpr Rgb kDefectColour{230, 0, 180};
+
 /// Colour of t ∈ [0, 1] (clamped; NaN gives the lowest colour).
 inline Rgb viridis(double t) {
   static constexpr std::array<std::array<double, 3>, 9> kAnchors{{{68, 1, 84},

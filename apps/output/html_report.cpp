@@ -8,6 +8,7 @@
 #include <string_view>
 
 #include "apps/output/atomic_file.hpp"
+#include "apps/output/colour_map.hpp"
 #include "apps/output/html_report_page.hpp"  // generated from viewer/ (apps/output/CMakeLists.txt)
 #include "core/errors.hpp"
 
@@ -76,6 +77,10 @@ void check_sizes(const HtmlReport& r) {
       if (f < 0 || f >= nf)
         fail("region face " + std::to_string(f) + " is outside the " + std::to_string(nf) +
              " faces");
+  for (const int f : r.defect_faces)
+    if (f < 0 || f >= nf)
+      fail("defect face " + std::to_string(f) + " is outside the " + std::to_string(nf) +
+           " faces");
   if (!r.histogram.edges.empty() && r.histogram.edges.size() != r.histogram.area.size() + 1)
     fail("the histogram needs one more edge than bins");
 }
@@ -98,6 +103,9 @@ std::string metadata(const HtmlReport& r, const Eigen::Vector3d& origin) {
                        {"face_count", region.faces.size()}});
     offset += region.faces.size();
   }
+  nlohmann::json defects = nlohmann::json::array();
+  for (const HtmlDefect& d : r.defects)
+    defects.push_back({{"text", d.text}, {"centre", point(d.centre)}, {"size", d.size}});
   nlohmann::json parameters = nlohmann::json::array();
   for (const auto& [name, value] : r.parameters)
     parameters.push_back({name, value});
@@ -124,7 +132,10 @@ std::string metadata(const HtmlReport& r, const Eigen::Vector3d& origin) {
         {"other_area", r.histogram.other_area}}},
       {"parameters", parameters},
       {"verdict", r.verdict},
-      {"verdict_text", r.verdict_text}};
+      {"verdict_text", r.verdict_text},
+      {"defects", defects},
+      {"defect_colour", {kDefectColour.r, kDefectColour.g, kDefectColour.b}},
+      {"defect_face_count", r.defect_faces.size()}};
   std::string text = json.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
   std::string escaped;
   escaped.reserve(text.size());
@@ -206,6 +217,12 @@ void write_html_report(const std::filesystem::path& path, const HtmlReport& repo
         put_le(bytes.data() + bytes.size() - 4, static_cast<std::uint32_t>(f));
       }
     write_blob(file, "region-faces", bytes);
+  }
+  if (!report.defect_faces.empty()) {
+    std::vector<unsigned char> bytes(4 * report.defect_faces.size());
+    for (std::size_t i = 0; i < report.defect_faces.size(); ++i)
+      put_le(bytes.data() + 4 * i, static_cast<std::uint32_t>(report.defect_faces[i]));
+    write_blob(file, "defect-faces", bytes);
   }
   for (const std::string_view piece : html_page::kAfterData)
     file.write(piece);

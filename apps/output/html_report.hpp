@@ -18,6 +18,8 @@
 //   vertex-values  float32 #V (NaN: no value, drawn grey)         (if vertex_values is given)
 //   face-values    float32 #F (NaN: no value)                      (if face_values is given)
 //   region-faces   uint32, the regions' face lists one after the other (offsets in the JSON)
+//   defect-faces   uint32, the faces near a defect region, drawn kDefectColour
+//                  (colour_map.hpp)                                (if defect_faces is given)
 // Payload: about (4/3)·(16·#V + 16·#F) bytes with both value arrays, 28 MB at 10⁶ faces.
 // Written atomically (atomic_file.hpp).
 
@@ -45,6 +47,14 @@ struct HtmlRegion {
   std::vector<int> faces;  ///< indices into HtmlReport::faces
 };
 
+/// A region where the surface crosses itself and was measured as given (geometry's
+/// DefectZone): listed in a warning beside the verdict.
+struct HtmlDefect {
+  std::string text;  ///< what and why, one sentence
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();  ///< [units]
+  double size = 0.0;  ///< bounding-box diagonal [units]
+};
+
 /// Area of the surface per thickness range: bin k is [edges[k], edges[k + 1]).
 struct HtmlHistogram {
   std::vector<double> edges;  ///< n + 1 increasing edges [units]
@@ -70,6 +80,11 @@ struct HtmlReport {
   std::vector<std::pair<std::string, std::string>> parameters;
   std::string verdict;       ///< "PASS", "FAIL" or empty (no check)
   std::string verdict_text;  ///< one sentence, e.g. "3 regions thinner than 10"
+  /// Defect regions, and the faces near them (indices into faces), drawn in the defect
+  /// colour over the thickness: the values there are measured on a surface that crosses
+  /// itself.
+  std::vector<HtmlDefect> defects;
+  std::vector<int> defect_faces;
 };
 
 /// Writes `report` to `path` atomically. Throws InputError on an I/O error, InternalError if

@@ -20,6 +20,10 @@ void write_ply(const std::filesystem::path& path, const Eigen::MatrixX3d& vertic
   if (field.size() != vertices.rows())
     throw InternalError("write_ply: field has " + std::to_string(field.size()) + " values for " +
                         std::to_string(vertices.rows()) + " vertices");
+  const bool defects = !colouring.defect.empty();
+  if (defects && colouring.defect.size() != static_cast<std::size_t>(vertices.rows()))
+    throw InternalError("write_ply: " + std::to_string(colouring.defect.size()) +
+                        " defect flags for " + std::to_string(vertices.rows()) + " vertices");
   if (colouring.field_name == "quality")
     throw InternalError("write_ply: the field may not be named 'quality', the name of its copy");
   std::string header = "ply\nformat binary_little_endian 1.0\n";
@@ -29,12 +33,14 @@ void write_ply(const std::filesystem::path& path, const Eigen::MatrixX3d& vertic
   header += "property float x\nproperty float y\nproperty float z\n";
   header += "property float " + colouring.field_name + "\nproperty float quality\n";
   header += "property uchar red\nproperty uchar green\nproperty uchar blue\n";
+  if (defects)
+    header += "property uchar defect\n";
   header += "element face " + std::to_string(faces.rows()) + '\n';
   header += "property list uchar int vertex_indices\nend_header\n";
 
   const double range = colouring.colour_maximum - colouring.colour_minimum;
   std::vector<char> payload;
-  payload.reserve(static_cast<std::size_t>(vertices.rows() * 23 + faces.rows() * 13));
+  payload.reserve(static_cast<std::size_t>(vertices.rows() * (defects ? 24 : 23) + faces.rows() * 13));
   const auto put = [&payload](const void* data, std::size_t bytes) {
     const auto* p = static_cast<const char*>(data);
     payload.insert(payload.end(), p, p + bytes);
@@ -45,9 +51,14 @@ void write_ply(const std::filesystem::path& path, const Eigen::MatrixX3d& vertic
                              static_cast<float>(field(v))};
     put(values, sizeof values);
     const double t = range > 0.0 ? (field(v) - colouring.colour_minimum) / range : 0.5;
-    const Rgb c = viridis(t);
+    const bool defect = defects && colouring.defect[static_cast<std::size_t>(v)] != 0;
+    const Rgb c = defect ? kDefectColour : viridis(t);
     const std::uint8_t rgb[3] = {c.r, c.g, c.b};
     put(rgb, sizeof rgb);
+    if (defects) {
+      const std::uint8_t flag = defect ? 1 : 0;
+      put(&flag, 1);
+    }
   }
   for (Eigen::Index f = 0; f < faces.rows(); ++f) {
     const std::uint8_t corners = 3;

@@ -6,16 +6,19 @@
 //                      float quality (the same values again); uchar red, green, blue
 //                      (viridis, colour_map.hpp, of the field between colour_minimum and
 //                      colour_maximum, clamped)
+//                      uchar defect (only when PlyColouring::defect is given: 1 for a vertex
+//                      near a region where the surface crosses itself, coloured kDefectColour)
 //   element face #F:   list uchar int vertex_indices (counter-clockwise seen from outside)
 //
 // "quality" is the vertex property MeshLab (vcglib's PLY importer) loads as vertex quality,
 // which its Colorize by vertex Quality filter, quality histogram and selection by quality
 // work on; other programs see the named field.
 //
-// Payload size: #V·23 + #F·13 bytes after "end_header\n". Written atomically.
+// Payload size: #V·23 (24 with defect) + #F·13 bytes after "end_header\n". Written atomically.
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -26,6 +29,8 @@ struct PlyColouring {
   double colour_minimum = 0.0;  ///< maps to the darkest colour
   double colour_maximum = 1.0;  ///< maps to the brightest colour
   std::string comment;          ///< one header comment line (e.g. the units), may be empty
+  /// #V flags, or empty: vertices near a defect region (drawn kDefectColour, property defect).
+  std::vector<char> defect;
 };
 
 /// vertices: #V×3, faces: #F×3, field: #V. Throws InputError on an I/O error and

@@ -19,6 +19,18 @@ const char* problem_status_label(geometry::MeshProblem::Status status) {
   return "";
 }
 
+nlohmann::json defects_json(const std::vector<geometry::DefectZone>& defects) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const geometry::DefectZone& d : defects)
+    list.push_back({{"what", d.what},
+                    {"why", d.why},
+                    {"centre", point_json(d.centre())},
+                    {"size", d.size()},
+                    {"box", {{"min", point_json(d.box.min)}, {"max", point_json(d.box.max)}}},
+                    {"pairs", d.pairs}});
+  return list;
+}
+
 nlohmann::json mesh_report_json(const geometry::MeshReport& r) {
   nlohmann::json problems = nlohmann::json::array();
   for (const geometry::MeshProblem& p : r.problems)
@@ -44,6 +56,7 @@ nlohmann::json mesh_report_json(const geometry::MeshReport& r) {
           {"weld_tolerance", r.weld_tolerance},
           {"problems", problems},
           {"repairs", r.repairs},
+          {"defects", defects_json(r.defects)},
           {"usable", r.usable()}};
 }
 

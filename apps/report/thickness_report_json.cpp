@@ -1,5 +1,7 @@
 #include "apps/report/thickness_report_json.hpp"
 
+#include "apps/report/mesh_report_json.hpp"
+
 namespace bemshape::apps {
 namespace {
 
@@ -102,6 +104,23 @@ nlohmann::json thickness_report_json(const analysis::ThicknessOptions& options,
                           {{"edges", result.histogram.edges},
                            {"area", result.histogram.area},
                            {"unmeasurable_area", result.histogram.other_area}}}};
+  // Where the surface crosses itself and was measured as given, with the solver faces within
+  // h0 of each region (the faces the outputs mark 'defect').
+  nlohmann::json defects = defects_json(result.input.report.defects);
+  for (std::size_t i = 0; i < result.input.report.defects.size(); ++i) {
+    const std::vector<char> near = geometry::faces_near_defects(
+        solve.solver_mesh, {result.input.report.defects[i]}, result.h0);
+    std::size_t faces = 0;
+    double area = 0.0;
+    for (std::size_t f = 0; f < near.size(); ++f)
+      if (near[f] != 0) {
+        ++faces;
+        area += solve.solver_mesh.face_areas()(static_cast<Eigen::Index>(f));
+      }
+    defects[i]["solver_faces_marked"] = faces;
+    defects[i]["area_marked"] = area;
+  }
+  report["defects"] = defects;
   report["check"] = check;
   report["thick_regions"] = thick;
   report["solver"] = solver_json(solve);

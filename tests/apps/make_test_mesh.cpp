@@ -8,11 +8,14 @@
 //                                                          cavity: walls WALL thick)
 //   make_test_mesh cylinder RADIUS LENGTH MAX_EDGE OUT.stl
 //   make_test_mesh part NAME OUT.stl [CIRCLE_SEGMENTS]     (tests/support/labelled_parts.hpp)
+//   make_test_mesh damaged NAME OUT.stl [INTACT.stl]       (tests/support/damaged_meshes.hpp:
+//                                                          the damaged mesh, and its intact part)
 #include <cstdlib>
 #include <iostream>
 #include <string>
 
 #include "apps/output/stl_writer.hpp"
+#include "tests/support/damaged_meshes.hpp"
 #include "tests/support/labelled_parts.hpp"
 #include "geometry/primitive_meshes.hpp"
 
@@ -44,10 +47,20 @@ int main(int argc, char** argv) {
   } else if (kind == "part" && (argc == 4 || argc == 5)) {
     mesh = testing::make_labelled_part(argv[2], argc == 5 ? std::atoi(argv[4]) : 64).mesh;
     out = argv[3];
+  } else if (kind == "damaged" && (argc == 4 || argc == 5)) {
+    const testing::DamagedMesh d = testing::damaged_mesh(argv[2]);
+    output::write_binary_stl(argv[3], d.vertices, d.faces);
+    std::cout << argv[3] << ": " << d.faces.rows() << " faces, " << d.description << "; expected: "
+              << testing::to_string(d.outcome) << '\n';
+    if (argc == 4)
+      return 0;
+    mesh = d.intact;
+    out = argv[4];
   } else {
     std::cerr
         << "usage: make_test_mesh sphere R EDGE OUT | shell R1 R2 EDGE OUT | box LX LY LZ EDGE "
-           "OUT | hollow-box SIDE WALL EDGE OUT | cylinder R L EDGE OUT | part NAME OUT [SEGMENTS]\n";
+           "OUT | hollow-box SIDE WALL EDGE OUT | cylinder R L EDGE OUT | part NAME OUT [SEGMENTS] | "
+           "damaged NAME OUT [INTACT_OUT]\n";
     return 2;
   }
   output::write_binary_stl(out, mesh.vertices(), mesh.faces());

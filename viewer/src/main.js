@@ -5,7 +5,8 @@
 // window.bemshapeViewer is the page's state for scripts and tests: { ready, error,
 // timings: { decode, build, select (the last region's highlight and line of sight):
 // durations [ms]; firstRender: ms from navigation start to the first picture drawn },
-// selectRegion(i), resetView(), selected, flying }.
+// selectRegion(i), resetView(), selected, flying, defectFaces (faces drawn in the defect
+// colour) }.
 
 import {
   AmbientLight, BufferAttribute, BufferGeometry, Color, DirectionalLight, DoubleSide,
@@ -16,7 +17,7 @@ import {
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 
 import { colourValues } from './colour_map.js';
-import { fillColourBar, fillHeader, fillHistogram, fillRegions } from './panel.js';
+import { fillColourBar, fillDefects, fillHeader, fillHistogram, fillRegions } from './panel.js';
 import { readReport } from './report_data.js';
 import { clearView } from './view_direction.js';
 
@@ -92,6 +93,7 @@ function start() {
   fillHeader(meta);
   fillColourBar(meta);
   fillHistogram(meta);
+  fillDefects(meta);
 
   const view = document.getElementById('view');
   const renderer = webglRenderer(view, meta.faces);
@@ -137,6 +139,22 @@ function start() {
     });
   }
   scene.add(surface);
+  // Faces near a defect region, always drawn over the thickness in the defect colour.
+  if (report.defectFaces.length > 0) {
+    const defectIndices = new Uint32Array(3 * report.defectFaces.length);
+    report.defectFaces.forEach((f, k) => defectIndices.set(indices.subarray(3 * f, 3 * f + 3), 3 * k));
+    const defectGeometry = new BufferGeometry();
+    defectGeometry.setAttribute('position', positionAttribute);
+    defectGeometry.setIndex(new BufferAttribute(defectIndices, 1));
+    const [r, g, b] = meta.defect_colour.map((c) => c / 255);
+    const defects = new Mesh(defectGeometry, new MeshBasicMaterial({
+      color: new Color(r, g, b), transparent: true, opacity: 0.75, depthWrite: false, side: DoubleSide,
+      polygonOffset: true, polygonOffsetFactor: -1, polygonOffsetUnits: -1 }));
+    defects.renderOrder = 1;
+    defects.name = 'defects';
+    scene.add(defects);
+  }
+  state.defectFaces = report.defectFaces.length;
   geometry.computeBoundingSphere();
   geometry.computeBoundingBox();
   const radius = Math.max(geometry.boundingSphere.radius, 1e-12);

@@ -156,3 +156,26 @@ export function fillRegions(meta, select) {
     return button;
   });
 }
+
+/// The warning of a surface measured as given where it crosses itself: the defect colour,
+/// how many faces carry it and each region with what and why. Hidden without defects.
+export function fillDefects(meta) {
+  const box = document.getElementById('defects');
+  const defects = meta.defects ?? [];
+  if (defects.length === 0) return;
+  box.hidden = false;
+  const swatch = document.createElement('span');
+  swatch.className = 'swatch';
+  swatch.style.background = cssColour(meta.defect_colour);
+  const head = document.createElement('div');
+  head.append(swatch, `The surface crosses itself in ${defects.length} region${defects.length === 1 ? '' : 's'} ` +
+    `that could not be repaired; the ${meta.defect_face_count.toLocaleString('en')} faces within h0 of ` +
+    `${defects.length === 1 ? 'it are' : 'them are'} drawn in this colour: their thickness is measured on the surface as given, not the part's.`);
+  const list = document.createElement('ul');
+  for (const d of defects) {
+    const item = document.createElement('li');
+    item.textContent = d.text;
+    list.append(item);
+  }
+  box.replaceChildren(head, list);
+}

@@ -31,7 +31,7 @@ function typed(name, Type) {
 }
 
 /// { meta, positions (Float32Array 3·#V, relative to meta.origin), indices (Uint32Array 3·#F),
-///   vertexValues, faceValues (Float32Array or null), regionFaces (Uint32Array) }
+///   vertexValues, faceValues (Float32Array or null), regionFaces, defectFaces (Uint32Array) }
 export function readReport() {
   const element = document.getElementById('bemshape-report');
   if (!element) throw new Error('this page holds no bemshape report data');
@@ -43,7 +43,10 @@ export function readReport() {
     vertexValues: meta.has_vertex_values ? typed('vertex-values', Float32Array) : null,
     faceValues: meta.has_face_values ? typed('face-values', Float32Array) : null,
     regionFaces: typed('region-faces', Uint32Array) ?? new Uint32Array(0),
+    defectFaces: typed('defect-faces', Uint32Array) ?? new Uint32Array(0),
   };
+  if (report.defectFaces.length !== (meta.defect_face_count ?? 0))
+    throw new Error(`the report lists ${meta.defect_face_count} defect faces but holds ${report.defectFaces.length}`);
   if (report.positions.length !== 3 * meta.vertices || report.indices.length !== 3 * meta.faces)
     throw new Error(`the report's arrays do not match its ${meta.vertices} vertices and ${meta.faces} faces`);
   return report;

@@ -3,6 +3,7 @@
 //
 //   node html_report_browser.mjs --bemshape BIN --sample BIN --viewer DIR --plate STL --out DIR
 //        [--sizes 100000,1000000] [--screenshots DIR [--docs-region K]] [--max-edge 40]
+//        [--damaged NAME --make-test-mesh BIN]
 //
 // For each report (a real `bemshape thickness --html` run on the bundled plate, checked
 // against the same run's --report JSON, and a synthetic part written by
@@ -167,8 +168,54 @@ for (const faces of sizes) {
   reports.push({ file, name: `synthetic ${meta.faces} faces`, expect: { verdict: 'FAIL', bins: meta.histogram.area.length, regions: meta.regions.length, regionFaces: meta.regions[0]?.face_count } });
 }
 
+// A part that crosses itself where no solid can be recovered (--damaged NAME of the
+// damaged-mesh corpus, written by --make-test-mesh BIN): measured as given, the page must
+// list the region and draw the faces its JSON report marks in the defect colour.
+let damaged = null;
+if (args.damaged) {
+  const stl = path.join(args.out, `${args.damaged}.stl`);
+  execFileSync(args['make-test-mesh'], ['damaged', args.damaged, stl]);
+  const html = path.join(args.out, 'damaged.html'), json = path.join(args.out, 'damaged.json');
+  const r = spawnSync(args.bemshape, ['thickness', stl, '--h0', '0.5', '--max-edge', '0.35', '--html', html, '--report', json, '--quiet'], { encoding: 'utf8' });
+  check(r.status === 0, `damaged: bemshape thickness exits 0, got ${r.status} ${r.stderr}`);
+  check(/warning: .*crosses itself in 1 region/.test(r.stderr), 'damaged: the warning goes to stderr');
+  damaged = { html, report: JSON.parse(readFileSync(json, 'utf8')) };
+}
+
+async function checkDamaged(browser) {
+  const page = await browser.newPage({ viewport: { width: 1280, height: 800 } });
+  const errors = [];
+  page.on('console', (message) => { if (message.type() === 'error') errors.push(message.text()); });
+  page.on('pageerror', (error) => errors.push(String(error)));
+  await page.goto(pathToFileURL(damaged.html).href);
+  await page.waitForFunction(() => window.bemshapeViewer && (window.bemshapeViewer.ready || window.bemshapeViewer.error), null, { timeout: 120000 });
+  const state = await page.evaluate(() => ({ error: window.bemshapeViewer.error, defectFaces: window.bemshapeViewer.defectFaces }));
+  check(!state.error, `damaged: page reports no error (${state.error || 'none'})`);
+  const marked = damaged.report.defects.reduce((n, d) => n + d.solver_faces_marked, 0);
+  check(state.defectFaces > 0 && state.defectFaces === marked, `damaged: ${state.defectFaces} faces drawn in the defect colour, ${marked} marked in the JSON report`);
+  check(await page.isVisible('#defects'), 'damaged: the defect warning is shown');
+  const text = await page.textContent('#defects');
+  check(text.includes('crosses itself') && text.includes('across around'), `damaged: the warning names the region and its size ("${text.slice(0, 120)}...")`);
+  // kDefectColour (230, 0, 180), shaded by nothing (an unlit overlay at 0.75 opacity).
+  const shot = (await page.locator('#view').screenshot()).toString('base64');
+  const magenta = await page.evaluate(async (a) => {
+    const bitmap = await createImageBitmap(await (await fetch(`data:image/png;base64,${a}`)).blob());
+    const canvas = new OffscreenCanvas(bitmap.width, bitmap.height);
+    const context = canvas.getContext('2d');
+    context.drawImage(bitmap, 0, 0);
+    const p = context.getImageData(0, 0, bitmap.width, bitmap.height).data;
+    let n = 0;
+    for (let i = 0; i < p.length; i += 4) if (p[i] > 150 && p[i + 1] < 80 && p[i + 2] > 110) n += 1;
+    return n / (p.length / 4);
+  }, shot);
+  check(magenta > 1e-3, `damaged: ${(100 * magenta).toFixed(2)} % of the view in the defect colour`);
+  check(errors.length === 0, `damaged: no console or page errors${errors.length ? ': ' + errors.join(' | ') : ''}`);
+  await page.close();
+}
+
 const browser = await chromium.launch({ executablePath: process.env.BEMSHAPE_CHROMIUM || '/usr/bin/chromium', args: chromiumArgs, headless: true });
 try {
+  if (damaged) await checkDamaged(browser);
   for (const r of reports) {
     const shots = await checkReport(browser, r.file, r.name, r.expect);
     if (r.name === 'plate' && args.screenshots) {
