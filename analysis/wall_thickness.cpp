@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "analysis/mid_surface_pairs.hpp"
+#include "analysis/separation_at_scale.hpp"
 #include "bem/evaluate/laplace_treecode.hpp"
 #include "bem/evaluate/surface_gradient.hpp"
 #include "bem/hmatrix/cluster_tree.hpp"
@@ -232,7 +233,8 @@ WallThickness wall_thickness(const geometry::SurfaceMesh& mesh,
                 !features::oblique(result.alignment(f));
   }
   MidSurfacePairs pairs = mid_surface_pairs(mesh, result.mid_point, result.depth, found, across);
-  result.pair_thickness = std::move(pairs.thickness);
+  result.pair_thickness = separation_at_scale(mesh, pairs.thickness,
+                                              kSeparationScaleRatio * parameters.h0);
   result.partner = std::move(pairs.partner);
   result.paired_faces = (result.partner.array() >= 0).count();
   for (Eigen::Index f = 0; f < nf; ++f)
