@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <random>
 
 #include "tests/bem/adaptive_triangle_reference.hpp"
 
@@ -67,6 +68,23 @@ ReferenceIntegrals reference_panel_integrals(double kappa, const bem::Panel& pan
         m.double_layer_gradient);
   }
   return out;
+}
+
+std::vector<bem::Panel> rule_test_panels() {
+  using Eigen::Vector3d;
+  return {bem::make_panel(Vector3d(0, 0, 0), Vector3d(1, 0, 0), Vector3d(0.5, 0.866, 0)),
+          bem::make_panel(Vector3d(0, 0, 0), Vector3d(1, 0, 0), Vector3d(0, 1, 0)),
+          bem::make_panel(Vector3d(0, 0, 0), Vector3d(1, 0, 0), Vector3d(0.5, 0.2, 0))};
+}
+
+std::vector<Eigen::Vector3d> target_directions(int count, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> normal;
+  std::vector<Eigen::Vector3d> dirs = {Eigen::Vector3d(0, 0, 1), Eigen::Vector3d(1, 0, 0),
+                                       Eigen::Vector3d(-1, -1, 0.01).normalized()};
+  while (static_cast<int>(dirs.size()) < count)
+    dirs.push_back(Eigen::Vector3d(normal(rng), normal(rng), normal(rng)).normalized());
+  return dirs;
 }
 
 }  // namespace bemshape::testing

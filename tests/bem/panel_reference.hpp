@@ -4,6 +4,8 @@
 // independently of bem/: G = e^{−κr}/(4πr) (κ = 0: Laplace), ∂G/∂n_y = G'(r)(y − x)·n/r, and
 // the x-gradients of both.
 
+#include <vector>
+
 #include <Eigen/Core>
 
 #include "bem/quadrature/panel.hpp"
@@ -30,5 +32,13 @@ NearFieldMagnitudes near_field_magnitudes(const bem::Panel& panel, double kappa)
 ReferenceIntegrals reference_panel_integrals(double kappa, const bem::Panel& panel,
                                              const Eigen::Vector3d& x, bool with_gradients,
                                              double rel_tol = 1e-12);
+
+/// The three panel shapes the rule tables are calibrated and checked on: equilateral, right
+/// and obtuse, each with a longest edge of 1.
+std::vector<bem::Panel> rule_test_panels();
+
+/// `count` unit directions around a panel: the normal, an in-plane direction and a grazing
+/// one first, then normal variates from std::mt19937 seeded with `seed`, normalised.
+std::vector<Eigen::Vector3d> target_directions(int count, unsigned seed);
 
 }  // namespace bemshape::testing

@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <cmath>
 #include <iostream>
-#include <random>
 #include <vector>
 
 #include "bem/evaluate/near_panel_integrals.hpp"
@@ -22,21 +21,8 @@ using Eigen::Vector3d;
 
 namespace {
 
-std::vector<bem::Panel> test_panels() {
-  return {bem::make_panel(Vector3d(0, 0, 0), Vector3d(1, 0, 0), Vector3d(0.5, 0.866, 0)),
-          bem::make_panel(Vector3d(0, 0, 0), Vector3d(1, 0, 0), Vector3d(0, 1, 0)),
-          bem::make_panel(Vector3d(0, 0, 0), Vector3d(1, 0, 0), Vector3d(0.5, 0.2, 0))};
-}
-
-std::vector<Vector3d> directions(int count, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::normal_distribution<double> normal;
-  std::vector<Vector3d> dirs = {Vector3d(0, 0, 1), Vector3d(1, 0, 0),
-                                Vector3d(-1, -1, 0.01).normalized()};
-  while (static_cast<int>(dirs.size()) < count)
-    dirs.push_back(Vector3d(normal(rng), normal(rng), normal(rng)).normalized());
-  return dirs;
-}
+using testing::rule_test_panels;
+using testing::target_directions;
 
 /// The error of `v` against the reference, relative to the entry's natural magnitude at
 /// distance r (area·|G^{(k)}(r)| for the k-th derivative), the worst of the four.
@@ -66,8 +52,8 @@ TEST_CASE("near panel integrals: measured errors of candidate rules (prints the 
       {"col10", &bem::collapsed_gauss_rule(10)}};
   for (double ratio : {0.8, 1.0, 1.2, 1.5, 2.0, 2.5, 3.0, 4.0, 6.0, 8.0, 12.0, 20.0, 40.0}) {
     std::vector<double> worst(rules.size(), 0.0);
-    for (const bem::Panel& p : test_panels())
-      for (const Vector3d& dir : directions(43, 1)) {
+    for (const bem::Panel& p : rule_test_panels())
+      for (const Vector3d& dir : target_directions(43, 1)) {
         const Vector3d x = p.centroid + ratio * p.diameter * dir;
         const auto ref = testing::reference_panel_integrals(0.0, p, x, true, 1e-12);
         for (size_t i = 0; i < rules.size(); ++i)
@@ -85,9 +71,9 @@ TEST_CASE("near panel integrals: within their accuracy at every distance, exact 
           "[near_panel_integrals]") {
   // Other directions than the calibration's, ratios at and between the rows' thresholds.
   double worst = 0.0;
-  for (const bem::Panel& p : test_panels())
+  for (const bem::Panel& p : rule_test_panels())
     for (double ratio : {0.3, 0.7, 1.0, 1.2, 1.5, 1.7, 2.0, 2.2, 2.5, 3.0, 4.0, 5.0, 10.0, 40.0, 100.0})
-      for (const Vector3d& dir : directions(6, 5)) {
+      for (const Vector3d& dir : target_directions(6, 5)) {
         const Vector3d x = p.centroid + ratio * p.diameter * dir;
         const auto ref = testing::reference_panel_integrals(0.0, p, x, true, 1e-10);
         const double e = scaled_error(bem::near_panel_integrals(p, x, true), ref, p,
@@ -101,7 +87,7 @@ TEST_CASE("near panel integrals: within their accuracy at every distance, exact 
 
 TEST_CASE("near panel integrals: the values alone are the values of the gradient path",
           "[near_panel_integrals]") {
-  const bem::Panel p = test_panels()[2];
+  const bem::Panel p = rule_test_panels()[2];
   for (double ratio : {1.1, 1.8, 3.0, 6.0, 50.0}) {
     const Vector3d x = p.centroid + ratio * p.diameter * Vector3d(0.3, -0.5, 0.8).normalized();
     const bem::PanelIntegrals with = bem::near_panel_integrals(p, x, true);

@@ -6,7 +6,6 @@
 #include <initializer_list>
 #include <iostream>
 #include <limits>
-#include <random>
 #include <vector>
 
 #include "bem/kernels/laplace_kernel.hpp"
@@ -35,21 +34,8 @@ double relative_error(const Vector3d& value, const Vector3d& reference, double m
   return (value - reference).norm() / std::max(reference.norm(), magnitude_floor * magnitude);
 }
 
-std::vector<bem::Panel> test_panels() {
-  return {bem::make_panel(Vector3d(0, 0, 0), Vector3d(1, 0, 0), Vector3d(0.5, 0.866, 0)),
-          bem::make_panel(Vector3d(0, 0, 0), Vector3d(1, 0, 0), Vector3d(0, 1, 0)),
-          bem::make_panel(Vector3d(0, 0, 0), Vector3d(1, 0, 0), Vector3d(0.5, 0.2, 0))};
-}
-
-std::vector<Vector3d> directions(int count, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::normal_distribution<double> normal;
-  std::vector<Vector3d> dirs = {Vector3d(0, 0, 1), Vector3d(1, 0, 0),
-                                Vector3d(-1, -1, 0.01).normalized()};
-  while (static_cast<int>(dirs.size()) < count)
-    dirs.push_back(Vector3d(normal(rng), normal(rng), normal(rng)).normalized());
-  return dirs;
-}
+using testing::rule_test_panels;
+using testing::target_directions;
 
 struct NamedRule {
   const char* name;
@@ -71,8 +57,8 @@ void print_worst_errors(const std::vector<NamedRule>& rules, std::initializer_li
       if (kd * (ratio - 0.6) > max_kappa_gap)
         continue;
       std::vector<double> worst(rules.size(), 0.0);
-      for (const bem::Panel& p : test_panels())
-        for (const Vector3d& dir : directions(43, 1)) {
+      for (const bem::Panel& p : rule_test_panels())
+        for (const Vector3d& dir : target_directions(43, 1)) {
           const Vector3d x = p.centroid + ratio * p.diameter * dir;
           const double kappa = kd / p.diameter, r = ratio * p.diameter;
           const auto ref = testing::reference_panel_integrals(kappa, p, x, with_gradients, 1e-13);
@@ -101,10 +87,10 @@ TEST_CASE("integrate_panel: values and gradients match the reference at all dist
   const std::vector<double> ratios = {0.6, 1.2, 1.6, 2.2, 3.0, 4.5, 7.0, 10.0, 15.0, 40.0, 200.0};
   const std::vector<double> kappa_diameters = {0.0, 0.005, 0.2, 0.6, 1.2, 2.0, 4.0, 8.0, 100.0};
   double worst_value = 0, worst_gradient = 0;
-  for (const bem::Panel& p : test_panels())
+  for (const bem::Panel& p : rule_test_panels())
     for (double kd : kappa_diameters)
       for (double ratio : ratios)
-        for (const Vector3d& dir : directions(6, 7)) {
+        for (const Vector3d& dir : target_directions(6, 7)) {
           const Vector3d x = p.centroid + ratio * p.diameter * dir;
           const double kappa = kd / p.diameter;
           const bool grads = ratio > 1.0;  // near gradients are covered by test_polar_quadrature
@@ -134,9 +120,9 @@ TEST_CASE("integrate_panel: values and gradients match the reference at all dist
 TEST_CASE("integrate_panel: single_layer() is the single layer of integrate_panel",
           "[panel_integrals]") {
   const YukawaKernel yukawa(3.0);
-  for (const bem::Panel& p : test_panels())
+  for (const bem::Panel& p : rule_test_panels())
     for (double ratio : {0.3, 2.0, 5.0, 20.0, 300.0})
-      for (const Vector3d& dir : directions(4, 3)) {
+      for (const Vector3d& dir : target_directions(4, 3)) {
         const Vector3d x = p.centroid + ratio * p.diameter * dir;
         // Same rule, different summation order: equal to rounding.
         CHECK(bem::single_layer(LaplaceKernel{}, p, x) ==
@@ -148,7 +134,7 @@ TEST_CASE("integrate_panel: single_layer() is the single layer of integrate_pane
 
 TEST_CASE("integrate_panel: Yukawa entries beyond 40/kappa are exactly zero and negligible",
           "[panel_integrals]") {
-  const bem::Panel p = test_panels()[0];
+  const bem::Panel p = rule_test_panels()[0];
   const double kappa = 50.0;
   const YukawaKernel G(kappa);
   const Vector3d x = p.centroid + (p.radius + 41.0 / kappa) * Vector3d(0.6, 0, 0.8);
@@ -208,12 +194,12 @@ TEST_CASE("integrate_panel: invariant under translation and rotation", "[panel_i
       Eigen::AngleAxisd(0.7, Vector3d(1, 2, 3).normalized()).toRotationMatrix();
   const Vector3d shift(3.5, -1.25, 0.75);
   const YukawaKernel yukawa(2.0);
-  for (const bem::Panel& p : test_panels()) {
+  for (const bem::Panel& p : rule_test_panels()) {
     const bem::Panel q = bem::make_panel(rotation * p.corners[0] + shift,
                                          rotation * p.corners[1] + shift,
                                          rotation * p.corners[2] + shift);
     for (double ratio : {0.0, 0.01, 0.8, 2.0, 5.0, 30.0})
-      for (const Vector3d& dir : directions(5, 11)) {
+      for (const Vector3d& dir : target_directions(5, 11)) {
         const Vector3d x = p.centroid + ratio * p.diameter * dir;
         const Vector3d y = rotation * x + shift;
         auto check = [&](const bem::PanelIntegrals& a, const bem::PanelIntegrals& b) {
@@ -266,8 +252,8 @@ TEST_CASE("integrate_attenuated_panel: within the absolute accuracy of the Lapla
   // calibration grid (three panel shapes, seven directions): V within 1e−9·|T|/(4πr) and K
   // within 1e−9·|T|/(4πr²) of the adaptive reference, and the cheap rule really is used.
   int cheap = 0, checked = 0;
-  for (const bem::Panel& p : test_panels())
-    for (const Vector3d& dir : directions(7, 3))
+  for (const bem::Panel& p : rule_test_panels())
+    for (const Vector3d& dir : target_directions(7, 3))
       for (const double ratio : {1.5, 1.8, 2.2, 2.7, 3.4, 4.5, 7.0})
         for (const double kd : {0.5, 1.0, 1.7, 2.8, 3.9, 5.5, 8.0}) {
           const double kappa = kd / p.diameter, r = ratio * p.diameter;
@@ -327,8 +313,8 @@ TEST_CASE(
       &bem::collapsed_gauss_rule(4), &bem::collapsed_gauss_rule(6), &bem::collapsed_gauss_rule(8)};
   const auto check = [&](const auto& kernel) {
     int checked = 0;
-    for (const bem::Panel& panel : test_panels())
-      for (const Vector3d& dir : directions(7, 5))
+    for (const bem::Panel& panel : rule_test_panels())
+      for (const Vector3d& dir : target_directions(7, 5))
         for (const double distance : {1.6, 3.0, 9.0})
           for (const bem::TriangleRule* rule : rules) {
             REQUIRE(rule->size() >= bem::kArrayRulePoints);
