@@ -1,59 +1,17 @@
 #include "analysis/mid_surface_pairs.hpp"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
-#include <cstdint>
 #include <limits>
-#include <unordered_map>
 #include <vector>
+
+#include "analysis/point_bins.hpp"
 
 namespace bemshape::analysis {
 namespace {
 
 /// Edge length of an equilateral triangle of the face's area: √(4A/√3).
 double face_edge(double area) { return std::sqrt(4.0 * area / std::sqrt(3.0)); }
-
-/// Mid-surface points binned in cubes of side `cell`.
-class MidPointBins {
- public:
-  MidPointBins(const Eigen::MatrixX3d& points, const FaceMask& used, double cell) : cell_(cell) {
-    for (Eigen::Index i = 0; i < points.rows(); ++i)
-      if (used(i) && points.row(i).allFinite())
-        cells_[key(index(points.row(i).transpose()))].push_back(i);
-  }
-
-  /// Calls visit(i) for every point in the cubes within `radius` of x.
-  template <class Visit>
-  void near(const Eigen::Vector3d& x, double radius, Visit&& visit) const {
-    const std::array<std::int64_t, 3> c = index(x);
-    const auto reach = static_cast<std::int64_t>(std::ceil(radius / cell_));
-    for (std::int64_t i = c[0] - reach; i <= c[0] + reach; ++i)
-      for (std::int64_t j = c[1] - reach; j <= c[1] + reach; ++j)
-        for (std::int64_t k = c[2] - reach; k <= c[2] + reach; ++k) {
-          const auto found = cells_.find(key({i, j, k}));
-          if (found != cells_.end())
-            for (const Eigen::Index p : found->second) visit(p);
-        }
-  }
-
- private:
-  std::array<std::int64_t, 3> index(const Eigen::Vector3d& x) const {
-    return {static_cast<std::int64_t>(std::floor(x.x() / cell_)),
-            static_cast<std::int64_t>(std::floor(x.y() / cell_)),
-            static_cast<std::int64_t>(std::floor(x.z() / cell_))};
-  }
-  static std::uint64_t key(const std::array<std::int64_t, 3>& c) {
-    // 21 bits per axis: distinct for |index| < 2²⁰, a hash collision beyond (the lookup
-    // still checks distances).
-    constexpr std::uint64_t mask = (1u << 21) - 1;
-    return (std::uint64_t(c[0]) & mask) | ((std::uint64_t(c[1]) & mask) << 21) |
-           ((std::uint64_t(c[2]) & mask) << 42);
-  }
-
-  double cell_;
-  std::unordered_map<std::uint64_t, std::vector<Eigen::Index>> cells_;
-};
 
 }  // namespace
 
@@ -67,7 +25,7 @@ MidSurfacePairs mid_surface_pairs(const geometry::SurfaceMesh& mesh,
   if (!wanted.any()) return result;
   // Cells of twice the mean edge: a query of the typical radius looks at 3³ cells.
   const double cell = 2.0 * face_edge(mesh.face_areas().mean());
-  const MidPointBins grid(mid_point, across, cell);
+  const PointBins grid(mid_point, across, cell);
   for (Eigen::Index f = 0; f < nf; ++f) {
     if (!wanted(f) || !std::isfinite(depth(f))) continue;
     const Eigen::Vector3d p = mid_point.row(f).transpose();
