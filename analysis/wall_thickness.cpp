@@ -1,6 +1,5 @@
 #include "analysis/wall_thickness.hpp"
 
-#include "analysis/mid_surface_pairs.hpp"
 #include <algorithm>
 #include <atomic>
 #include <cmath>
