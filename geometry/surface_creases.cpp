@@ -173,9 +173,14 @@ SurfaceCreases find_surface_creases(const SurfaceMesh& mesh, const CreaseOptions
         result.creases.push_back({e.a, e.b, e.angle, tessellated, crossed.facet_width});
       }
     } else if (e.angle > kCurvedEdgeAngle) {
-      // Inside a facet of θ ≤ θ_c: the width across it is the lower face height.
-      const double width = 2.0 * std::min(mesh.face_areas()(e.f0), mesh.face_areas()(e.f1)) /
-                           std::max(length, std::numeric_limits<double>::min());
+      // Inside a facet of θ ≤ θ_c: the width across it is the lower face height; with normals
+      // filtered at a scale, at least that scale, over which the filtered normals turn however
+      // narrow the faces (a CAD export's slivers would otherwise read as a radius of a few
+      // hundredths of a millimetre, and ask for elements as small).
+      const double width =
+          std::max(2.0 * std::min(mesh.face_areas()(e.f0), mesh.face_areas()(e.f1)) /
+                       std::max(length, std::numeric_limits<double>::min()),
+                   options.normal_scale);
       result.crossed.push_back({e.a, e.b, e.angle, width,
                                 options.chord_tolerance > 0.0
                                     ? longest_chord_within(e.angle, width, options.chord_tolerance)

@@ -72,7 +72,9 @@ struct DihedralEdge {
 struct CrossedEdge {
   int a = 0, b = 0;
   double angle = 0.0;        ///< θ [rad]
-  double facet_width = 0.0;  ///< w [model units]: narrower adjacent facet (or face height)
+  /// w [model units]: the narrower adjacent facet; inside a facet the lower face's height, and
+  /// with CreaseOptions::normal_scale at least that scale (filtered normals turn over no less).
+  double facet_width = 0.0;
   double max_chord = 0.0;    ///< h_δ = sag⁻¹(δ) [model units]; +∞ if δ = 0 was not asked for
   bool smoothed = false;     ///< a crease candidate (θ > θ_c) smoothed by the rule above
   int f0 = -1, f1 = -1;      ///< the two faces of the edge

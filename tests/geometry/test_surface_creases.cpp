@@ -1,12 +1,14 @@
 #include <catch2/catch.hpp>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "core/errors.hpp"
 #include "geometry/constructive_solids.hpp"
 #include "geometry/primitive_meshes.hpp"
 #include "geometry/surface_creases.hpp"
+#include "tests/support/labelled_parts.hpp"
 
 using namespace bemshape;
 using namespace bemshape::geometry;
@@ -90,6 +92,27 @@ TEST_CASE("a lone shallow kink stays a crease, the facets of a cylinder are smoo
     CHECK(c.smoothed_edges() == 0);
     CHECK(c.patches == 48 + 2);
   }
+}
+
+TEST_CASE("normals filtered at a scale read a tube's radius, not its export's slivers") {
+  // The labelled tube (radii 15 and 12, 128 facets of 2.8°) is a boolean's output: its caps
+  // and facets are cut into slivers a few hundredths of a millimetre wide. Filtered at a scale,
+  // neighbouring slivers of one facet get normals up to a degree apart; read against a
+  // sliver's own height that would be a radius of a few hundredths, and the chord limits of
+  // the size field would ask for elements as small.
+  const SurfaceMesh tube = testing::make_labelled_part("tube", 64).mesh;
+  CreaseOptions options;
+  options.crease_angle_degrees = 5.0;
+  options.smooth_angle_degrees = 15.0;
+  options.chord_tolerance = 0.03;
+  options.normal_scale = 1.35;
+  const SurfaceCreases c = find_surface_creases(tube, options);
+  REQUIRE(!c.crossed.empty());
+  double smallest_radius = std::numeric_limits<double>::infinity();
+  for (const CrossedEdge& e : c.crossed)
+    smallest_radius = std::min(smallest_radius, e.facet_width / e.angle);
+  // No edge reads a radius below half the inner wall's.
+  CHECK(smallest_radius >= 6.0);
 }
 
 TEST_CASE("longest chord within the tolerance: sag⁻¹ in both regimes, continuous") {
