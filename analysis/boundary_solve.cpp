@@ -42,6 +42,7 @@ geometry::GradedMeshParameters wall_reading_mesh_parameters(double h0, double a,
   p.crease_angle_degrees = sharp_angle_degrees.value_or(kWallMeshCreaseAngle);
   p.normal_scale_ratio = kWallMeshNormalScale;
   p.require_facet_strips = false;
+  p.curve_turn_degrees = kWallMeshCurveTurn;
   return p;
 }
 

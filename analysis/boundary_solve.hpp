@@ -82,6 +82,12 @@ inline constexpr double kWallMeshNormalScale = 0.5;
 /// averaged normals of a noisy flat wall stay within about 2° of each other. TODO-measured.
 inline constexpr double kWallMeshCreaseAngle = 5.0;
 
+/// A crease turning by at most this at a vertex [degrees] is a round rim's tessellation, not
+/// a corner (geometry::GradedMeshParameters::curve_turn_degrees): the rims of holes, tubes and
+/// bosses take elements of the size field, not of their export's segments. A polygon of 24
+/// segments turns by 15° per vertex. TODO-measured.
+inline constexpr double kWallMeshCurveTurn = 15.0;
+
 /// The graded mesh of the wall reading for h0 and a (SolverMeshRule::wall_reading).
 geometry::GradedMeshParameters wall_reading_mesh_parameters(double h0, double a,
                                                             std::optional<double> sharp_angle_degrees);

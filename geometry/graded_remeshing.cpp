@@ -100,7 +100,17 @@ GradedMesh remesh_to_size_field(const SurfaceMesh& mesh, const SurfaceCreases& c
   input.creases.reserve(creases.creases.size());
   for (const DihedralEdge& c : creases.creases)
     input.creases.push_back({c.a, c.b});
-  input.corner = &creases.corner;
+  // Curved crease vertices are corners of the size field's straight pieces but not of the
+  // remesher: they slide along the crease polygon and may be dropped.
+  std::vector<char> fixed = creases.corner;
+  bool curved = false;
+  for (std::size_t v = 0; v < creases.curved.size(); ++v)
+    if (creases.curved[v]) {
+      fixed[v] = 0;
+      curved = true;
+    }
+  input.corner = &fixed;
+  input.curved_creases = curved;
   input.face_patch = &creases.face_patch;
   input.patches = creases.patches;
   input.size = [&field](const Eigen::Vector3d& x) { return field.size(x); };
@@ -145,6 +155,7 @@ GradedMesh graded_solver_mesh(const SurfaceMesh& mesh, const GradedMeshParameter
   crease_options.min_chord = p.min_chord_ratio * p.fine_edge;
   crease_options.normal_scale = p.normal_scale_ratio * p.h0;
   crease_options.require_facet_strips = p.require_facet_strips;
+  crease_options.curve_turn_degrees = p.curve_turn_degrees;
   const SurfaceCreases creases = find_surface_creases(mesh, crease_options);
   SizeFieldParameters field_parameters;
   field_parameters.fine_edge = p.fine_edge;

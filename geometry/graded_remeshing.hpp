@@ -132,6 +132,9 @@ struct GradedMeshParameters {
   double normal_scale_ratio = 0.0;
   /// CreaseOptions::require_facet_strips.
   bool require_facet_strips = true;
+  /// CreaseOptions::curve_turn_degrees: crease vertices turning by at most this [degrees]
+  /// (round rims) may slide along their crease or be dropped; 0 keeps every turn a corner.
+  double curve_turn_degrees = 0.0;
   /// An input whose edges are all within 4/3 of the field's h, whose angles are all above
   /// remeshing.min_angle_degrees and whose face count is at most this times the count the
   /// field asks for is returned as it is (0: always remesh).

@@ -10,6 +10,7 @@
 
 #include "core/errors.hpp"
 #include "geometry/detail/triangle_ray_caster.hpp"
+#include "geometry/union_find.hpp"
 
 namespace bemshape::geometry {
 namespace {
@@ -303,12 +304,26 @@ MeshSizeField::MeshSizeField(const SurfaceMesh& mesh, const SurfaceCreases& crea
     std::vector<Source> chain_sources;
     chain_sources.reserve(chains.size());
     std::vector<double> corner_spacing(static_cast<std::size_t>(mesh.num_vertices()), kInfinity);
+    // The straight pieces of one curved crease (a tessellated rim, joined at its curved
+    // vertices) are one crease: neither their lengths nor their distances to each other
+    // bound the size; its chords are limited by the chord sources above.
+    auto curved = [&](int v) {
+      return !creases.curved.empty() && creases.curved[static_cast<std::size_t>(v)];
+    };
+    UnionFind curves(static_cast<std::size_t>(mesh.num_vertices()));
+    for (const CreaseChain& c : chains)
+      if (curved(c.corner0) || curved(c.corner1))
+        curves.unite(c.corner0, c.corner1);
+    auto curve_of = [&](int end0, int end1) {
+      return curved(end0) || curved(end1) ? curves.find(end0) : -1;
+    };
     for (const CreaseChain& c : chains) {
       chain_sources.push_back({c.a, c.b, 0.0, SizeReason::crease_spacing, c.corner0, c.corner1});
       const double length = (c.b - c.a).norm();
       for (int corner : {c.corner0, c.corner1})
-        corner_spacing[static_cast<std::size_t>(corner)] =
-            std::min(corner_spacing[static_cast<std::size_t>(corner)], length);
+        if (!curved(corner))
+          corner_spacing[static_cast<std::size_t>(corner)] =
+              std::min(corner_spacing[static_cast<std::size_t>(corner)], length);
     }
     for (std::size_t v = 0; v < corner_spacing.size(); ++v)
       if (std::isfinite(corner_spacing[v]))
@@ -317,9 +332,10 @@ MeshSizeField::MeshSizeField(const SurfaceMesh& mesh, const SurfaceCreases& crea
     const SourceTree chain_tree(std::move(chain_sources));
     const double reach = p.max_edge / p.crease_spacing_ratio;  // farther creases do not matter
     for (const CreaseChain& c : chains) {
+      const int curve = curve_of(c.corner0, c.corner1);
       auto other = [&](const Source& s) {
         return s.end0 != c.corner0 && s.end0 != c.corner1 && s.end1 != c.corner0 &&
-               s.end1 != c.corner1;
+               s.end1 != c.corner1 && (curve < 0 || curve_of(s.end0, s.end1) != curve);
       };
       std::vector<std::pair<Vec3, Vec3>> pieces{{c.a, c.b}};
       while (!pieces.empty()) {

@@ -1,6 +1,7 @@
 #include "geometry/surface_creases.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -190,6 +191,11 @@ SurfaceCreases find_surface_creases(const SurfaceMesh& mesh, const CreaseOptions
   }
 
   // Crease degrees and corners.
+  std::vector<std::array<int, 2>> crease_faces(static_cast<std::size_t>(nv), {-1, -1});
+  for (std::size_t i = 0; i < edges.size(); ++i)
+    if (is_crease[i])
+      for (int v : {edges[i].a, edges[i].b})
+        crease_faces[static_cast<std::size_t>(v)] = {edges[i].f0, edges[i].f1};
   result.crease_degree = Eigen::VectorXi::Zero(nv);
   std::vector<std::array<int, 2>> crease_neighbours(static_cast<std::size_t>(nv), {-1, -1});
   for (const DihedralEdge& c : result.creases)
@@ -201,6 +207,8 @@ SurfaceCreases find_surface_creases(const SurfaceMesh& mesh, const CreaseOptions
     }
   const double tolerance = kCollinearTolerance * mesh.bounding_box().diagonal();
   result.corner.assign(static_cast<std::size_t>(nv), 0);
+  result.curved.assign(static_cast<std::size_t>(nv), 0);
+  const double curve_turn = options.curve_turn_degrees * std::numbers::pi / 180.0;
   for (int v = 0; v < nv; ++v) {
     const int degree = result.crease_degree(v);
     if (degree == 0)
@@ -216,6 +224,66 @@ SurfaceCreases find_surface_creases(const SurfaceMesh& mesh, const CreaseOptions
     const double t = (p - a).dot(ab) / ab.squaredNorm();
     const double off_line = (p - (a + t * ab)).norm();
     result.corner[static_cast<std::size_t>(v)] = !(t > 0.0 && t < 1.0 && off_line <= tolerance);
+  }
+  // Curved vertices: corners of degree 2 where the crease turns by at most the curve turn.
+  // Their crease's radius ρ is read over a window of arc length on each side (the normal
+  // scale, else the two crease edges at the vertex): the turns of the vertices within it over
+  // its length. An export's polygon turns at its facets' corners and (to rounding) not at the
+  // vertices it adds between them, so the edges at one vertex alone would say nothing.
+  if (curve_turn > 0.0) {
+    std::vector<double> turn(static_cast<std::size_t>(nv), 0.0);
+    for (int v = 0; v < nv; ++v) {
+      if (result.crease_degree(v) != 2) continue;
+      const auto [na, nb] = crease_neighbours[static_cast<std::size_t>(v)];
+      const Eigen::Vector3d in = V.row(v) - V.row(na), out = V.row(nb) - V.row(v);
+      turn[static_cast<std::size_t>(v)] = std::atan2(in.cross(out).norm(), in.dot(out));
+    }
+    // The turn of the vertices from `from` towards `towards` within `window` of arc (up to a
+    // vertex where creases branch or end), and the arc they own: the crease up to the last of
+    // them and half the edge beyond it, so that a regular polygon reads its own radius.
+    auto walk = [&](int from, int towards, double window, double& arc, double& turned) {
+      double walked = 0.0;
+      int previous = from, current = towards;
+      for (int steps = 0; steps < nv; ++steps) {
+        const double edge = (V.row(current) - V.row(previous)).norm();
+        if (walked + edge > window || result.crease_degree(current) != 2 || current == from) {
+          walked += 0.5 * edge;
+          break;
+        }
+        walked += edge;
+        turned += turn[static_cast<std::size_t>(current)];
+        const auto& next = crease_neighbours[static_cast<std::size_t>(current)];
+        const int following = next[0] == previous ? next[1] : next[0];
+        previous = current;
+        current = following;
+      }
+      arc += walked;
+    };
+    for (int v = 0; v < nv; ++v) {
+      const double theta = turn[static_cast<std::size_t>(v)];
+      if (result.crease_degree(v) != 2 || !result.corner[static_cast<std::size_t>(v)] ||
+          !(theta <= curve_turn))
+        continue;
+      result.curved[static_cast<std::size_t>(v)] = 1;
+      const auto [na, nb] = crease_neighbours[static_cast<std::size_t>(v)];
+      const double window =
+          options.normal_scale > 0.0
+              ? options.normal_scale
+              : 0.5 * ((V.row(v) - V.row(na)).norm() + (V.row(v) - V.row(nb)).norm());
+      double arc = 0.0, turned = theta;
+      walk(v, na, window, arc, turned);
+      walk(v, nb, window, arc, turned);
+      // The chord rule of a facet edge with θ and w = ρ·θ is the arc's sagitta h²/(8ρ).
+      const double radius = turned > 0.0 ? arc / turned : std::numeric_limits<double>::infinity();
+      const double width = radius * theta;
+      const auto [f0, f1] = crease_faces[static_cast<std::size_t>(v)];
+      if (theta > kCurvedEdgeAngle)
+        result.crossed.push_back({v, v, theta, width,
+                                  options.chord_tolerance > 0.0
+                                      ? longest_chord_within(theta, width, options.chord_tolerance)
+                                      : std::numeric_limits<double>::infinity(),
+                                  false, f0, f1});
+    }
   }
 
   // A closed crease loop whose every vertex lies on the line of its neighbours (possible only

@@ -56,6 +56,13 @@ struct CreaseOptions {
   /// up to θ_s the chord tolerance allows, lone shallow kinks too (with normals filtered at a
   /// scale, a tessellated ball's facets merge in places, and the strips break up).
   bool require_facet_strips = true;
+  /// If > 0 [degrees]: a crease vertex where exactly two creases meet and turn by at most
+  /// this (a round rim, tessellated as a polygon of short creases) is *curved*: the remesher
+  /// may slide it along the crease, drop it or add vertices on the crease polygon, so that the
+  /// rim's elements follow the size field rather than its tessellation; the chords across the
+  /// dropped vertices are limited like those of a smoothed edge (`crossed`). 0: every vertex
+  /// where a crease turns is a corner that never moves.
+  double curve_turn_degrees = 0.0;
 };
 
 /// An edge of the input mesh, by its vertex indices (a < b), with its dihedral angle.
@@ -84,12 +91,18 @@ struct SurfaceCreases {
   std::vector<DihedralEdge> creases;
   /// Non-crease edges with θ > kCurvedEdgeAngle (smoothed candidates and the nearly flat
   /// edges of finely tessellated curved surfaces), for the size field's curvature and chord
-  /// limits.
+  /// limits; and the curved crease vertices v (a = b = v, θ the crease's turn there, w the
+  /// mean of its two crease edges, f0 and f1 the faces of one of them), whose chords sag
+  /// like those across a facet edge.
   std::vector<CrossedEdge> crossed;
   Eigen::VectorXi crease_degree;  ///< #V: number of creases at each vertex
   /// #V: crease vertices that never move or vanish: where creases end, branch or turn (a
   /// vertex with two collinear creases lies inside a straight crease and may slide along it).
   std::vector<char> corner;
+  /// #V: the corners that are curved (CreaseOptions::curve_turn_degrees): corners of the
+  /// creases' straight pieces for the size field, free to slide along the crease polygon in
+  /// the remesher. All 0 unless asked for.
+  std::vector<char> curved;
   Eigen::VectorXi face_patch;  ///< #F: patch index (faces joined without crossing a crease)
   int patches = 0;
   /// #F×3: the normals the dihedral angles were measured with (the faces' own, or filtered

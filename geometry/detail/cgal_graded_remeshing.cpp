@@ -20,6 +20,7 @@
 
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
+#include <CGAL/AABB_segment_primitive.h>
 #include <CGAL/AABB_triangle_primitive.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Surface_mesh.h>
@@ -47,6 +48,9 @@ using EdgeIndex = Mesh::Edge_index;
 using FaceIndex = Mesh::Face_index;
 using Primitive = CGAL::AABB_triangle_primitive<Kernel, std::vector<Triangle>::const_iterator>;
 using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>>;
+using Segment = Kernel::Segment_3;
+using SegmentPrimitive = CGAL::AABB_segment_primitive<Kernel, std::vector<Segment>::const_iterator>;
+using SegmentTree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, SegmentPrimitive>>;
 using Vec3 = Eigen::Vector3d;
 
 /// Botsch–Kobbelt thresholds: split above 4/3·h, collapse below 4/5·h (their midpoint is
@@ -215,6 +219,12 @@ class Remesher {
       if (h == Mesh::null_halfedge())
         throw InternalError("graded remeshing: a crease is not an edge of the mesh");
       crease_[mesh_.edge(h)] = true;
+      if (in_.curved_creases)
+        crease_segments_.emplace_back(point(V.row(c[0]).transpose()), point(V.row(c[1]).transpose()));
+    }
+    if (in_.curved_creases && !crease_segments_.empty()) {
+      crease_tree_ = std::make_unique<SegmentTree>(crease_segments_.begin(), crease_segments_.end());
+      crease_tree_->accelerate_distance_queries();
     }
     for (Eigen::Index v = 0; v < V.rows(); ++v) {
       const VertexIndex vi = vh[static_cast<std::size_t>(v)];
@@ -253,6 +263,11 @@ class Remesher {
   // ---- geometry --------------------------------------------------------------------------
 
   Vec3 pos(VertexIndex v) const { return vec(mesh_.point(v)); }
+  /// A point for a crease vertex: x itself on straight creases (x lies on the line of the
+  /// crease already), the closest point of the input's crease polygon where creases curve.
+  Vec3 on_crease(const Vec3& x) const {
+    return crease_tree_ ? vec(crease_tree_->closest_point(point(x))) : x;
+  }
   double target(VertexIndex a, VertexIndex b) const { return 0.5 * (size_[a] + size_[b]); }
   double length(HalfedgeIndex h) const {
     return (pos(mesh_.target(h)) - pos(mesh_.source(h))).norm();
@@ -333,6 +348,8 @@ class Remesher {
     Vec3 x = 0.5 * (pos(a) + pos(b));
     if (!crease && !surfaces_[static_cast<std::size_t>(patch0)].flat())
       x = surfaces_[static_cast<std::size_t>(patch0)].project(x);
+    if (crease)
+      x = on_crease(x);
     // hnew: a → v, followed by h: v → b.
     const HalfedgeIndex hnew = CGAL::Euler::split_edge(h, mesh_);
     const VertexIndex v = mesh_.target(hnew);
@@ -591,7 +608,7 @@ class Remesher {
           throw InternalError("graded remeshing: a crease vertex without two crease edges");
         const Vec3 a = pos(ends[0]), b = pos(ends[1]);
         const double ha = target(ends[0], v), hb = target(ends[1], v);
-        const Vec3 x = a + (b - a) * (ha / (ha + hb));
+        const Vec3 x = on_crease(a + (b - a) * (ha / (ha + hb)));
         if ((x - p).squaredNorm() > 0.0)
           try_move(v, x);
         continue;
@@ -656,7 +673,7 @@ class Remesher {
           ends[found++] = mesh_.source(h);
       const Vec3 a = pos(ends[0]), b = pos(ends[1]);
       for (int k = 1; k < kRescueSamples; ++k) {
-        const Vec3 x = a + (b - a) * (static_cast<double>(k) / kRescueSamples);
+        const Vec3 x = on_crease(a + (b - a) * (static_cast<double>(k) / kRescueSamples));
         if (const double q = star_quality(v, x); q > best) {
           best = q;
           best_x = x;
@@ -781,6 +798,9 @@ class Remesher {
   std::vector<PatchSurface> surfaces_;
   double cos_turn_ = 0.0;
   long splits_ = 0, collapses_ = 0, flips_ = 0, moves_ = 0;
+  /// The input's crease edges, where curved creases let crease vertices leave their lines.
+  std::vector<Segment> crease_segments_;
+  std::unique_ptr<SegmentTree> crease_tree_;
 };
 
 }  // namespace

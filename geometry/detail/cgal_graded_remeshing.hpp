@@ -18,6 +18,10 @@ struct GradedRemeshInput {
   std::vector<std::array<int, 2>> creases;
   /// #V: crease corners, never moved or removed.
   const std::vector<char>* corner = nullptr;
+  /// If true, some crease vertices that are not corners lie where a crease turns (a curved
+  /// crease, geometry/surface_creases.hpp): every vertex on a crease is then put back onto
+  /// the input's crease polygon (its closest point) after it slides or is made by a split.
+  bool curved_creases = false;
   /// #F patch of each input face (faces joined without crossing a crease).
   const Eigen::VectorXi* face_patch = nullptr;
   int patches = 0;

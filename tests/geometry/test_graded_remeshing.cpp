@@ -218,6 +218,40 @@ TEST_CASE("a tessellated tube: smoothed facets give far fewer faces within the c
         delta * tube.mesh.area());
 }
 
+TEST_CASE("a tube's round rims: curved crease vertices let the rims take the field's sizes") {
+  // The labelled tube's rims are polygons of 128 creases turning by 2.8° at each vertex; as
+  // corners they would keep every vertex of the export and the faces around them tiny.
+  double h0 = 0.0;
+  const PreparedMesh tube = prepared_part("tube", &h0);
+  // The wall reading's mesh (analysis::wall_reading_mesh_parameters).
+  GradedMeshParameters p = parameters_for(h0);
+  p.max_edge_ratio = 2.0;
+  p.wall_thickness_ratio = 1.0;
+  p.refine_creases = false;
+  p.min_size_ratio = 0.5;
+  p.min_chord_ratio = 0.0;
+  p.chord_thickness_ratio = 0.01;
+  p.crease_angle_degrees = 5.0;
+  p.smooth_angle_degrees = 15.0;
+  p.normal_scale_ratio = 0.5;
+  p.require_facet_strips = false;
+  const GradedMesh corners = graded_solver_mesh(tube.mesh, p);
+  p.curve_turn_degrees = 15.0;
+  const GradedMesh curved = graded_solver_mesh(tube.mesh, p);
+  CHECK(curved.mesh.num_faces() < corners.mesh.num_faces() * 3 / 4);
+  CHECK(curved.mesh.smallest_angle_degrees() >= kAngleReached);
+  const MeshValidation v = validate_mesh(curved.mesh.vertices(), curved.mesh.faces());
+  CHECK(v.closed_manifold());
+  CHECK(!v.inconsistent_edges);
+  // Every vertex lies on the input surface (a rim vertex on the rim's polygon); the chords
+  // between rim vertices cut below it by at most the chord tolerance, c_δ times the wall.
+  const double diagonal = tube.mesh.bounding_box().diagonal();
+  CHECK(testing::max_distance_to_surface(curved.mesh.vertices(), tube.mesh.vertices(),
+                                         tube.mesh.faces()) <= 1e-9 * diagonal);
+  CHECK(std::abs(curved.mesh.signed_volume() - tube.mesh.signed_volume()) <=
+        p.chord_thickness_ratio * 3.0 * tube.mesh.area());
+}
+
 TEST_CASE("graded remeshing refuses empty, open and runaway input") {
   const SurfaceMesh box = make_box(Eigen::Vector3d::Zero(), Eigen::Vector3d::Ones(), 1.0);
   const SurfaceMesh open(box.vertices(), box.faces().topRows(box.num_faces() - 1));

@@ -115,6 +115,37 @@ TEST_CASE("normals filtered at a scale read a tube's radius, not its export's sl
   CHECK(smallest_radius >= 6.0);
 }
 
+TEST_CASE("a rod's rims are curved creases: free to slide, their radius read over a window") {
+  // A rod of radius 10 and 48 facets: its rims turn by 7.5° at each of their 48 vertices.
+  const SurfaceMesh rod = make_faceted_cylinder(Eigen::Vector2d(0, 0), 10.0, 0.0, 40.0, 48);
+  CreaseOptions options;
+  options.smooth_angle_degrees = 15.0;  // the facet edges smoothed: two creases per rim vertex
+  options.chord_tolerance = 1.0;
+  SECTION("off by default: every turn is a corner") {
+    const SurfaceCreases c = find_surface_creases(rod, options);
+    CHECK(std::count(c.curved.begin(), c.curved.end(), 1) == 0);
+  }
+  SECTION("a turn of at most 10°") {
+    options.curve_turn_degrees = 10.0;
+    const SurfaceCreases c = find_surface_creases(rod, options);
+    CHECK(std::count(c.curved.begin(), c.curved.end(), 1) == 2 * 48);
+    int rim_vertices = 0;
+    for (const CrossedEdge& e : c.crossed)
+      if (e.a == e.b) {
+        ++rim_vertices;
+        CHECK(e.angle == Approx(7.5 * kDegree).epsilon(1e-9));
+        // ρ = w/θ: the polygon's arc over its turn, 10·sin(π/48)/(π/48) = 9.993.
+        CHECK(e.facet_width / e.angle == Approx(10.0).epsilon(2e-3));
+      }
+    CHECK(rim_vertices == 2 * 48);
+  }
+  SECTION("a turn of at most 5°: the 7.5° rims stay corners") {
+    options.curve_turn_degrees = 5.0;
+    const SurfaceCreases c = find_surface_creases(rod, options);
+    CHECK(std::count(c.curved.begin(), c.curved.end(), 1) == 0);
+  }
+}
+
 TEST_CASE("longest chord within the tolerance: sag⁻¹ in both regimes, continuous") {
   const double theta = 3.0 * kDegree, w = 0.5;
   // One facet edge crossed: sag = h·θ/4.
