@@ -35,6 +35,7 @@ geometry::GradedMeshParameters wall_reading_mesh_parameters(double h0, double a,
   p.fine_edge = bem::TransmissionParameters::from_shape(h0, a).default_max_edge();
   p.max_edge_ratio = kWallMeshMaxEdgeRatio;
   p.wall_thickness_ratio = kWallMeshThicknessRatio;
+  p.thin_wall_ratio = kWallMeshThinWallRatio;
   p.refine_creases = false;
   p.min_size_ratio = kWallMeshMinSizeRatio;
   p.min_chord_ratio = 0.0;
