@@ -108,6 +108,20 @@ void require_same_surface(const SurfaceMesh& input, const SurfaceMesh& output,
   }
 }
 
+/// A remeshed surface whose chords may cross the input's facets: angles above the bound
+/// reached, closed, manifold and consistently oriented, every vertex on the input surface,
+/// and the volume within `delta` (the chord tolerance) times the area of the input's.
+void check_within_chords(const SurfaceMesh& output, const SurfaceMesh& input, double delta) {
+  CHECK(output.smallest_angle_degrees() >= kAngleReached);
+  const MeshValidation v = validate_mesh(output.vertices(), output.faces());
+  CHECK(v.closed_manifold());
+  CHECK(!v.inconsistent_edges);
+  const double diagonal = input.bounding_box().diagonal();
+  CHECK(testing::max_distance_to_surface(output.vertices(), input.vertices(), input.faces()) <=
+        1e-9 * diagonal);
+  CHECK(std::abs(output.signed_volume() - input.signed_volume()) <= delta * input.area());
+}
+
 GradedMeshParameters parameters_for(double h0) {
   GradedMeshParameters p;
   p.h0 = h0;
@@ -205,17 +219,7 @@ TEST_CASE("a tessellated tube: smoothed facets give far fewer faces within the c
   const GradedMesh smoothed = graded_solver_mesh(tube.mesh, p);
   CHECK(smoothed.report.smoothed_edges > 0);
   CHECK(smoothed.mesh.num_faces() < kept.mesh.num_faces() / 2);
-  CHECK(smoothed.mesh.smallest_angle_degrees() >= kAngleReached);
-  const MeshValidation v = validate_mesh(smoothed.mesh.vertices(), smoothed.mesh.faces());
-  CHECK(v.closed_manifold());
-  CHECK(!v.inconsistent_edges);
-  // The vertices lie on the input facets; chords cut below them by at most δ.
-  const double diagonal = tube.mesh.bounding_box().diagonal();
-  CHECK(testing::max_distance_to_surface(smoothed.mesh.vertices(), tube.mesh.vertices(),
-                                         tube.mesh.faces()) <= 1e-9 * diagonal);
-  const double delta = p.chord_tolerance_ratio * h0;
-  CHECK(std::abs(smoothed.mesh.signed_volume() - tube.mesh.signed_volume()) <=
-        delta * tube.mesh.area());
+  check_within_chords(smoothed.mesh, tube.mesh, p.chord_tolerance_ratio * h0);
 }
 
 TEST_CASE("a tube's round rims: curved crease vertices let the rims take the field's sizes") {
@@ -239,17 +243,8 @@ TEST_CASE("a tube's round rims: curved crease vertices let the rims take the fie
   p.curve_turn_degrees = 15.0;
   const GradedMesh curved = graded_solver_mesh(tube.mesh, p);
   CHECK(curved.mesh.num_faces() < corners.mesh.num_faces() * 3 / 4);
-  CHECK(curved.mesh.smallest_angle_degrees() >= kAngleReached);
-  const MeshValidation v = validate_mesh(curved.mesh.vertices(), curved.mesh.faces());
-  CHECK(v.closed_manifold());
-  CHECK(!v.inconsistent_edges);
-  // Every vertex lies on the input surface (a rim vertex on the rim's polygon); the chords
-  // between rim vertices cut below it by at most the chord tolerance, c_δ times the wall.
-  const double diagonal = tube.mesh.bounding_box().diagonal();
-  CHECK(testing::max_distance_to_surface(curved.mesh.vertices(), tube.mesh.vertices(),
-                                         tube.mesh.faces()) <= 1e-9 * diagonal);
-  CHECK(std::abs(curved.mesh.signed_volume() - tube.mesh.signed_volume()) <=
-        p.chord_thickness_ratio * 3.0 * tube.mesh.area());
+  // A rim vertex lies on the rim's polygon; the chord tolerance is c_δ times the 3 mm wall.
+  check_within_chords(curved.mesh, tube.mesh, p.chord_thickness_ratio * 3.0);
 }
 
 TEST_CASE("graded remeshing refuses empty, open and runaway input") {
