@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -273,6 +274,17 @@ class CheckAllRun {
         }
       queue.push_back(i);
     }
+    // Largest file first (a part's time grows with its size): the set then ends with small
+    // parts, and no core idles long beside the last part's job (longest-processing-time-first
+    // scheduling). The summary keeps the parts' own order.
+    std::vector<std::uintmax_t> bytes(parts_.size(), 0);
+    for (const std::size_t i : queue) {
+      std::error_code error;
+      const std::uintmax_t size = fs::file_size(parts_[i].path, error);
+      bytes[i] = error ? 0 : size;
+    }
+    std::stable_sort(queue.begin(), queue.end(),
+                     [&](std::size_t a, std::size_t b) { return bytes[a] > bytes[b]; });
     std::size_t next = 0;
     int stop_signal = 0;
     while (next < queue.size() || !running_.empty()) {

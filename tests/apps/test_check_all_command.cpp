@@ -205,12 +205,18 @@ TEST_CASE(
     ::execv(argv[0], argv.data());
     ::_exit(127);
   }
-  // Once the first part's report is there, the second part is running: interrupt the set.
+  // Once the first part's report is there (parts start largest file first), the second part
+  // is running: interrupt the set.
+  auto first_report = [&] {
+    for (int i = 0; i < kParts; ++i)
+      if (fs::exists(reports / numbered("p", i, ".stl.json")))
+        return true;
+    return false;
+  };
   const auto started = std::chrono::steady_clock::now();
-  while (!fs::exists(reports / "p0.stl.json") &&
-         std::chrono::steady_clock::now() - started < std::chrono::seconds(120))
+  while (!first_report() && std::chrono::steady_clock::now() - started < std::chrono::seconds(120))
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  REQUIRE(fs::exists(reports / "p0.stl.json"));
+  REQUIRE(first_report());
   ::kill(pid, SIGINT);
   int status = 0;
   REQUIRE(::waitpid(pid, &status, 0) == pid);
@@ -230,6 +236,15 @@ TEST_CASE(
   }
   CHECK(!reported.empty());
   REQUIRE(reported.size() < std::size_t(kParts));
+  // One job: the first part checked is a largest file.
+  std::uintmax_t largest = 0;
+  for (int i = 0; i < kParts; ++i)
+    largest = std::max(largest, fs::file_size(parts / numbered("p", i, ".stl")));
+  const std::string out = slurp(out_file);
+  const std::size_t line_end = out.find('\n');
+  REQUIRE(line_end != std::string::npos);
+  const std::size_t path_start = out.rfind(' ', line_end) + 1;
+  CHECK(fs::file_size(out.substr(path_start, line_end - path_start)) == largest);
   // The summary of the stopped set lists every part: checked, or interrupted.
   for (const nlohmann::json& r : read_summary(reports / "summary.jsonl"))
     CHECK(r["verdict"] == (reported.count(r["part"]) ? "pass" : "interrupted"));
