@@ -243,6 +243,24 @@ WallThickness wall_thickness(const geometry::SurfaceMesh& mesh,
                                    result.rim_indicator(f), result.pair_thickness(f),
                                    result.alignment(f));
   result.filled_faces = (!result.thickness.array().isFinite()).count();
+  for (Eigen::Index f = 0; f < nf; ++f) {
+    if (std::isfinite(result.thickness(f))) continue;
+    Fallback kind = Fallback::no_mid_surface;
+    if (std::isfinite(result.depth(f))) {
+      if (features::along_wall(result.mid_thickness(f), 2.0 * result.depth(f)))
+        kind = Fallback::along_wall;
+      else if (features::oblique(result.alignment(f)))
+        kind = Fallback::oblique;
+      else
+        kind = Fallback::rim_without_pair;
+    }
+    FallbackFaces& counted = result.fallback[static_cast<std::size_t>(kind)];
+    const Eigen::Vector3d c = mesh.face_centroids().row(f).transpose();
+    counted.box.min = counted.faces == 0 ? c : counted.box.min.cwiseMin(c);
+    counted.box.max = counted.faces == 0 ? c : counted.box.max.cwiseMax(c);
+    ++counted.faces;
+    counted.area += mesh.face_areas()(f);
+  }
   fill_from_neighbours(mesh, result.thickness);
   // A shell where no face has a value of its own: h_mid where there is one, else not
   // measurable.
@@ -255,6 +273,16 @@ WallThickness wall_thickness(const geometry::SurfaceMesh& mesh,
              std::chrono::duration<double>(StageTimes::Clock::now() - pairing_start).count());
   report_progress(progress, "wall thickness", 1.0);
   return result;
+}
+
+const char* to_string(Fallback kind) {
+  switch (kind) {
+    case Fallback::no_mid_surface: return "no_mid_surface";
+    case Fallback::along_wall: return "along_wall";
+    case Fallback::oblique: return "oblique";
+    case Fallback::rim_without_pair: return "rim_without_pair";
+  }
+  return "unknown";
 }
 
 Eigen::VectorXd vertex_mean(const geometry::SurfaceMesh& mesh, const Eigen::VectorXd& face_values) {

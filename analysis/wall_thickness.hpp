@@ -31,6 +31,7 @@
 //                    none was found or the direction is not defined (a rod's axis)
 //   pair_thickness:  #F [model units]; NaN where no pair was found
 
+#include <array>
 #include <cstdint>
 
 #include <Eigen/Core>
@@ -49,6 +50,32 @@ inline constexpr double kDepthTolerance = 1e-3;
 /// Growth of τ between steps while no sign change is found.
 inline constexpr double kDepthGrowth = 1.6;
 
+/// Why a face has no reading of its own and took its neighbours' (features/wall_thickness.hpp).
+enum class Fallback {
+  no_mid_surface,    ///< the search left the solid or found no sign change of s·n
+  along_wall,        ///< the search ran along the wall (2τ0 > kAlongWallRatio·h_mid)
+  oblique,           ///< the search crossed its wall obliquely (|n·e3| < kMinAlignment)
+  rim_without_pair,  ///< near a rim (rim indicator above kRimFrom) and no opposite skin
+                     ///< paired: a skin more than arccos(kOppositeCosine) from opposite
+};
+inline constexpr int kFallbackKinds = 4;
+
+/// "no_mid_surface", "along_wall", "oblique", "rim_without_pair".
+const char* to_string(Fallback kind);
+
+/// The faces that fell back for one reason: how many, their area [model units²] and where
+/// (the bounding box of their centroids; zero where there are none).
+struct FallbackFaces {
+  Eigen::Index faces = 0;
+  double area = 0.0;
+  geometry::BoundingBox box;
+};
+
+/// The share of the surface's area above which the faces that fell back for a reason other
+/// than along_wall (end faces and hole walls always do) are reported with a warning: there
+/// the reading is the neighbours', not the face's own (docs/usage.md, "Faces that fell back").
+inline constexpr double kFallbackWarningShare = 0.05;
+
 struct WallThickness {
   Eigen::VectorXd thickness;
   Eigen::MatrixX3d mid_point;
@@ -64,6 +91,8 @@ struct WallThickness {
   Eigen::Index paired_faces = 0;
   /// Faces given their neighbours' thickness (no mid-surface point, or searched along the wall).
   Eigen::Index filled_faces = 0;
+  /// The faces counted in filled_faces, by reason (indexed by Fallback).
+  std::array<FallbackFaces, kFallbackKinds> fallback{};
   /// Points where s was evaluated (the search's cost).
   std::uint64_t evaluations = 0;
 };

@@ -276,6 +276,24 @@ void print_report(std::ostream& out, const ThicknessOptions& options, double h0,
         << number_text(run.solver_mesh.area(), 6)
         << ") are marked 'defect' in the outputs: the thickness there is not the part's\n";
   }
+  if (result.column == analysis::kColumnWall) {
+    const double total = run.solver_mesh.face_areas().sum();
+    double unexpected = 0.0;
+    out << "  fell back    area read from neighbours:";
+    for (int k = 0; k < analysis::kFallbackKinds; ++k) {
+      const analysis::FallbackFaces& b = result.wall.fallback[static_cast<std::size_t>(k)];
+      out << (k ? ", " : " ") << analysis::to_string(static_cast<analysis::Fallback>(k)) << ' '
+          << number_text(b.area, 6);
+      if (static_cast<analysis::Fallback>(k) != analysis::Fallback::along_wall) unexpected += b.area;
+    }
+    out << " of " << number_text(total, 6) << '\n';
+    if (unexpected > analysis::kFallbackWarningShare * total)
+      out << "  warning      " << number_text(100.0 * unexpected / total, 3)
+          << " % of the area has no wall reading of its own (no mid-surface, oblique, or near a\n"
+          << "               rim without an opposite skin: walls drafted more than 18 degrees?);\n"
+          << "               it took its neighbours' reading (the JSON report's \"fallback\" says\n"
+          << "               where)\n";
+  }
   if (options.min_thickness) {
     const double threshold = *options.min_thickness;
     if (!defects.empty())

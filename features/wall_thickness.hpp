@@ -78,6 +78,13 @@ inline constexpr double kRimFull = 0.3;
 /// A reading above this multiple of the skins' separation (where a pair was found) is a
 /// junction's: the separation is taken.
 inline constexpr double kJunctionRatio = 1.05;
+/// Near a rim without a pair, h_mid is kept where twice the depth agrees with it within this
+/// fraction: the rim indicator is raised there by a taper, not by a rim (the skins of a
+/// wedge of 20° are 160° apart, beyond the pairing's limit, and the taper's field along the
+/// wall gives them indicators of 0.1–0.25; h_mid and 2τ0 agree within 2.5 % there and read
+/// the wall through p0 within 2 %, tests/analysis/test_wall_thickness_shapes.cpp). Within
+/// half a wall of a true rim h_mid reads 10–50 % above 2τ0.
+inline constexpr double kRimAgreement = 0.05;
 /// h_twice above this multiple of h_mid means the search ran along the wall, not across it.
 inline constexpr double kAlongWallRatio = 1.5;
 
@@ -111,7 +118,8 @@ inline double rim_weight(double rim_indicator) {
 /// junction). NaN — the face takes its neighbours' reading — where neither is the face's own
 /// wall: the search ran along the wall (`twice_depth` > kAlongWallRatio·h_mid) or crossed it
 /// obliquely (`alignment`, see oblique()), or the face is near a rim (rim indicator above
-/// kRimFrom) and has no pair. `twice_depth` may be NaN (no mid-surface point found along the
+/// kRimFrom), has no pair and twice its depth is more than kRimAgreement from h_mid (where it
+/// is within, a taper: h_mid). `twice_depth` may be NaN (no mid-surface point found along the
 /// normal): h_mid is used.
 inline double wall_thickness(double mid_thickness, double twice_depth, double rim_indicator,
                              double pair_thickness = std::numeric_limits<double>::quiet_NaN(),
@@ -124,7 +132,8 @@ inline double wall_thickness(double mid_thickness, double twice_depth, double ri
   const bool paired = std::isfinite(pair_thickness);
   const double weight = rim_weight(rim_indicator);
   if (weight > 0.0 && !paired)
-    return nan;
+    return std::abs(twice_depth - mid_thickness) <= kRimAgreement * mid_thickness ? mid_thickness
+                                                                                  : nan;
   const double reading =
       weight > 0.0 ? (1.0 - weight) * mid_thickness + weight * pair_thickness : mid_thickness;
   // Where walls meet, the pair's wall rather than the junction's larger sphere.

@@ -79,10 +79,20 @@ nlohmann::json thickness_report_json(const analysis::ThicknessOptions& options,
     thick = {{"threshold", *options.max_thickness}, {"regions", regions}};
   }
   nlohmann::json wall_search = nullptr;
-  if (result.column == analysis::kColumnWall)
+  if (result.column == analysis::kColumnWall) {
+    nlohmann::json fallback = nlohmann::json::object();
+    for (int k = 0; k < analysis::kFallbackKinds; ++k) {
+      const analysis::FallbackFaces& b = result.wall.fallback[static_cast<std::size_t>(k)];
+      fallback[analysis::to_string(static_cast<analysis::Fallback>(k))] = {
+          {"faces", b.faces},
+          {"area", b.area},
+          {"box", {{"min", point_json(b.box.min)}, {"max", point_json(b.box.max)}}}};
+    }
     wall_search = {{"evaluations", result.wall.evaluations},
                    {"faces_without_mid_surface", result.wall.filled_faces},
-                   {"faces_paired_across_the_wall", result.wall.paired_faces}};
+                   {"faces_paired_across_the_wall", result.wall.paired_faces},
+                   {"fallback", fallback}};
+  }
   nlohmann::json report = report_header("thickness", names.input);
   report["output"] = optional_text(names.output);
   report["solver_output"] = optional_text(names.solver_output);

@@ -69,3 +69,58 @@ TEST_CASE("mid-surface pairs: the opposite skin at the same mid-surface point gi
   crossed(1) = false;
   CHECK(analysis::mid_surface_pairs(mesh, mid, depth, all, crossed).partner(0) == -1);
 }
+
+namespace {
+
+/// Two faces of a 2-thick wall: 0 on top (z = 2, normal +z) and 1 below it, its normal tilted
+/// by `tilt` [rad] from −z about the y axis, both reaching the mid-surface point (0.3, 0.3, 1)
+/// (depths `depth0` and `depth1`, whatever they are, so that only the rule under test decides).
+analysis::MidSurfacePairs two_skins(double tilt, double depth0, double depth1) {
+  const Eigen::Vector3d n1(-std::sin(tilt), 0.0, -std::cos(tilt));
+  // Face 1: a small triangle through (0.3, 0.3, 0) with normal n1.
+  const Eigen::Vector3d u = Eigen::Vector3d::UnitY(), w = u.cross(n1);  // w × u = n1
+  const Eigen::Vector3d c1(1.0 / 3.0, 1.0 / 3.0, 0.0);
+  Eigen::MatrixX3d v(6, 3);
+  v.row(0) << 0, 0, 2;
+  v.row(1) << 1, 0, 2;
+  v.row(2) << 0, 1, 2;
+  v.row(3) = (c1 - 0.4 * w - 0.4 * u).transpose();
+  v.row(4) = (c1 + 0.8 * w - 0.4 * u).transpose();
+  v.row(5) = (c1 - 0.4 * w + 0.8 * u).transpose();
+  Eigen::MatrixX3i f(2, 3);
+  f << 0, 1, 2, 3, 4, 5;
+  const geometry::SurfaceMesh mesh(v, f);
+  REQUIRE(mesh.face_normals().row(1).dot(n1.transpose()) == Approx(1.0));
+  Eigen::VectorXd depth(2);
+  depth << depth0, depth1;
+  Eigen::MatrixX3d mid(2, 3);
+  mid.row(0) << 1.0 / 3.0, 1.0 / 3.0, 1.0;
+  mid.row(1) = mid.row(0);
+  const Eigen::Array<bool, Eigen::Dynamic, 1> all = Eigen::Array<bool, 2, 1>::Constant(true);
+  return analysis::mid_surface_pairs(mesh, mid, depth, all, all);
+}
+
+}  // namespace
+
+TEST_CASE("mid-surface pairs: skins more than 18° from opposite are not paired") {
+  const double degree = M_PI / 180.0;
+  // 17° from opposite (163° apart): paired, separation along the bisector.
+  const analysis::MidSurfacePairs near = two_skins(17 * degree, 1.0, 1.0);
+  CHECK(near.partner(0) == 1);
+  CHECK(near.partner(1) == 0);
+  CHECK(near.thickness(0) == Approx(2.0 * std::cos(8.5 * degree)).epsilon(1e-9));
+  // 19° (161° apart): not paired.
+  const analysis::MidSurfacePairs far = two_skins(19 * degree, 1.0, 1.0);
+  CHECK(far.partner(0) == -1);
+  CHECK(far.partner(1) == -1);
+}
+
+TEST_CASE("mid-surface pairs: the separation must agree with the depths within a factor 2") {
+  // Separation 2; the depths add to 2/0.55 and 2/0.45 (below half the separation's
+  // inverse: kept / dropped), and to 2·0.55 and 2·0.45.
+  CHECK(two_skins(0.0, 1.0, 2.0 / 0.55 - 1.0).partner(0) == 1);
+  CHECK(two_skins(0.0, 1.0, 2.0 / 0.45 - 1.0).partner(0) == -1);
+  CHECK(two_skins(0.0, 0.55, 0.55).partner(0) == 1);
+  CHECK(two_skins(0.0, 0.45, 0.45).partner(0) == -1);
+  CHECK(two_skins(0.0, 0.55, 0.55).thickness(0) == Approx(2.0).epsilon(1e-12));
+}

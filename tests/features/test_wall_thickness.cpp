@@ -96,3 +96,51 @@ TEST_CASE("wall thickness: a search that crosses its wall obliquely has no readi
   CHECK(wall_thickness(4.0, 4.0, 0.05, 4.0, 1.0) == 4.0);
   CHECK(wall_thickness(4.0, 4.0, 0.05, 4.0, nan) == 4.0);  // e3 not defined: a rod, a ball
 }
+
+// Each rule of wall_thickness() and each of its constants at its boundary, with literal
+// values (not the named constants), so that deleting a rule or moving its constant fails here.
+TEST_CASE("wall thickness: every rule and constant at its boundary") {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  using features::wall_thickness;
+  SECTION("along the wall: twice the depth above 1.5·h_mid") {
+    CHECK(wall_thickness(4.0, 1.45 * 4.0, 0.05) == 4.0);
+    CHECK(std::isnan(wall_thickness(4.0, 1.55 * 4.0, 0.05)));
+    CHECK(std::isnan(wall_thickness(4.0, 1.55 * 4.0, 0.05, 4.0, 1.0)));  // a pair does not save it
+    CHECK(features::along_wall(2.0, 3.1));
+    CHECK(!features::along_wall(2.0, 2.9));
+  }
+  SECTION("oblique: |n·e3| below cos 30°") {
+    CHECK(std::isnan(wall_thickness(4.0, 4.0, 0.05, 4.0, 0.85)));
+    CHECK(wall_thickness(4.0, 4.0, 0.05, 4.0, 0.88) == 4.0);
+  }
+  SECTION("rim blend: h_mid alone up to 0.1, the pair alone from 0.3, linear between") {
+    CHECK(wall_thickness(5.0, 4.0, 0.09, 4.9) == 5.0);
+    CHECK(wall_thickness(5.0, 4.0, 0.11, 4.9) < 5.0);
+    CHECK(wall_thickness(5.0, 4.0, 0.2, 4.9) == Approx(4.95).epsilon(1e-12));
+    CHECK(wall_thickness(5.0, 4.0, 0.15, 4.9) == Approx(4.975).epsilon(1e-12));
+    CHECK(wall_thickness(5.0, 4.0, 0.29, 4.9) > 4.9);
+    CHECK(wall_thickness(5.0, 4.0, 0.31, 4.9) == 4.9);
+    CHECK(features::rim_weight(0.1) == 0.0);
+    CHECK(features::rim_weight(0.3) == 1.0);
+  }
+  SECTION("near a rim without a pair: no reading of its own, unless 2τ0 agrees within 5 %") {
+    CHECK(wall_thickness(5.0, 4.0, 0.09) == 5.0);
+    CHECK(std::isnan(wall_thickness(5.0, 4.0, 0.11)));
+    CHECK(wall_thickness(4.0, 4.19, 0.2) == 4.0);  // a taper: h_mid
+    CHECK(wall_thickness(4.0, 3.81, 0.2) == 4.0);
+    CHECK(std::isnan(wall_thickness(4.0, 4.21, 0.2)));
+    CHECK(std::isnan(wall_thickness(4.0, 3.79, 0.2)));
+  }
+  SECTION("junction: h_mid more than 5 % above the pair takes the pair, inside the wall too") {
+    CHECK(wall_thickness(4.19, 4.0, 0.0, 4.0) == 4.19);  // 4.75 % above: a ball's centre
+    CHECK(wall_thickness(4.21, 4.0, 0.0, 4.0) == 4.0);   // 5.25 % above: a junction
+    CHECK(wall_thickness(5.4, 4.0, 0.05, 4.0) == 4.0);   // the foot of a rib: +35 %
+    // The cap applies to the blended reading: at weight ½, (5 + 4.5)/2 = 4.75 > 1.05·4.5.
+    CHECK(wall_thickness(5.0, 4.0, 0.2, 4.5) == 4.5);
+    // h_mid below the pair is never capped.
+    CHECK(wall_thickness(3.0, 4.0, 0.0, 4.0) == 3.0);
+  }
+  SECTION("no mid-surface depth: h_mid, whatever else") {
+    CHECK(wall_thickness(4.0, nan, 0.5, 3.0, 0.1) == 4.0);
+  }
+}
