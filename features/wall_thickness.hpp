@@ -83,8 +83,10 @@ inline constexpr double kJunctionRatio = 1.05;
 /// wedge of 20° are 160° apart, beyond the pairing's limit, and the taper's field along the
 /// wall gives them indicators of 0.1–0.25; h_mid and 2τ0 agree within 2.5 % there and read
 /// the wall through p0 within 2 %, tests/analysis/test_wall_thickness_shapes.cpp). Within
-/// half a wall of a true rim h_mid reads 10–50 % above 2τ0.
-inline constexpr double kRimAgreement = 0.05;
+/// half a wall of a true rim h_mid reads 10–50 % above 2τ0. At 5 % the noisy faces near the
+/// rims of the noisy L-bracket (σ 3 % of t) kept h_mid and read a second thin region
+/// (tests/analysis/test_thickness_scale.cpp); 2.5 % keeps the wedge's readings and not those.
+inline constexpr double kRimAgreement = 0.025;
 /// h_twice above this multiple of h_mid means the search ran along the wall, not across it.
 inline constexpr double kAlongWallRatio = 1.5;
 
