@@ -74,8 +74,10 @@ namespace {
 
 /// Two faces of a 2-thick wall: 0 on top (z = 2, normal +z) and 1 below it, its normal tilted
 /// by `tilt` [rad] from −z about the y axis, both reaching the mid-surface point (0.3, 0.3, 1)
-/// (depths `depth0` and `depth1`, whatever they are, so that only the rule under test decides).
-analysis::MidSurfacePairs two_skins(double tilt, double depth0, double depth1) {
+/// (depths `depth0` and `depth1`, whatever they are, so that only the rule under test decides),
+/// face 1's moved by `offset` along x.
+analysis::MidSurfacePairs two_skins(double tilt, double depth0, double depth1,
+                                    double offset = 0.0) {
   const Eigen::Vector3d n1(-std::sin(tilt), 0.0, -std::cos(tilt));
   // Face 1: a small triangle through (0.3, 0.3, 0) with normal n1.
   const Eigen::Vector3d u = Eigen::Vector3d::UnitY(), w = u.cross(n1);  // w × u = n1
@@ -96,6 +98,7 @@ analysis::MidSurfacePairs two_skins(double tilt, double depth0, double depth1) {
   Eigen::MatrixX3d mid(2, 3);
   mid.row(0) << 1.0 / 3.0, 1.0 / 3.0, 1.0;
   mid.row(1) = mid.row(0);
+  mid(1, 0) += offset;
   const Eigen::Array<bool, Eigen::Dynamic, 1> all = Eigen::Array<bool, 2, 1>::Constant(true);
   return analysis::mid_surface_pairs(mesh, mid, depth, all, all);
 }
@@ -123,4 +126,19 @@ TEST_CASE("mid-surface pairs: the separation must agree with the depths within a
   CHECK(two_skins(0.0, 0.55, 0.55).partner(0) == 1);
   CHECK(two_skins(0.0, 0.45, 0.45).partner(0) == -1);
   CHECK(two_skins(0.0, 0.55, 0.55).thickness(0) == Approx(2.0).epsilon(1e-12));
+}
+
+TEST_CASE("mid-surface pairs: the partner's mid-surface point within half the depth and two edges") {
+  // Face 0 (area 1/2, edge √(4A/√3) = 1.0746) reaches up to ½·1 + 2·1.0746 = 2.649 from its
+  // mid-surface point, face 1 (area 0.72, edge 1.2894) up to ½·1 + 2·1.2894 = 3.079.
+  const analysis::MidSurfacePairs within = two_skins(0.0, 1.0, 1.0, 2.6);
+  CHECK(within.partner(0) == 1);
+  CHECK(within.partner(1) == 0);
+  const analysis::MidSurfacePairs beyond = two_skins(0.0, 1.0, 1.0, 2.7);
+  CHECK(beyond.partner(0) == -1);
+  CHECK(beyond.partner(1) == 0);
+  // The depth's share: with depths of 2 (separation 2 still within the factor 2 of 4), face 0
+  // reaches 1 + 2.149 = 3.149.
+  CHECK(two_skins(0.0, 2.0, 2.0, 3.1).partner(0) == 1);
+  CHECK(two_skins(0.0, 2.0, 2.0, 3.2).partner(0) == -1);
 }
