@@ -11,6 +11,7 @@
 #include "analysis/input_mesh.hpp"
 #include "analysis/measure_thickness.hpp"
 #include "analysis/wall_thickness.hpp"
+#include "features/wall_thickness.hpp"
 #include "geometry/constructive_solids.hpp"
 
 using namespace bemshape;
@@ -113,6 +114,20 @@ analysis::ThicknessResult prism_reading(const geometry::Polygon2& polygon) {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
+/// Faces paired with a face whose search did not cross its own wall (it ran along the wall or
+/// crossed it obliquely): mid_surface_pairs takes partners among the faces that crossed only.
+Eigen::Index pairs_with_faces_off_their_wall(const analysis::WallThickness& wall) {
+  Eigen::Index count = 0;
+  for (Eigen::Index f = 0; f < wall.partner.size(); ++f) {
+    const int g = wall.partner(f);
+    if (g < 0) continue;
+    if (features::along_wall(wall.mid_thickness(g), 2.0 * wall.depth(g)) ||
+        features::oblique(wall.alignment(g)))
+      ++count;
+  }
+  return count;
+}
+
 }  // namespace
 
 TEST_CASE("wall thickness: the legs of an L and a T read their wall next to the junction") {
@@ -124,6 +139,8 @@ TEST_CASE("wall thickness: the legs of an L and a T read their wall next to the 
   geometry::Polygon2 t(8, 2);
   t << 0, 0, 24, 0, 24, 2, 13, 2, 13, 14, 11, 14, 11, 2, 0, 2;
   const analysis::ThicknessResult tr = prism_reading(t);
+  CHECK(pairs_with_faces_off_their_wall(lr.wall) == 0);
+  CHECK(pairs_with_faces_off_their_wall(tr.wall) == 0);
   for (const double from : {0.5, 1.0, 2.0}) {
     const SkinScore ls = score_prism(lr, [&](const Eigen::Vector3d& c, const Eigen::Vector3d& n) {
       const bool along_x = std::abs(n.y()) > 0.9 && c.x() > 2 + from * kWall && c.x() < 2 + (from + 1) * kWall;
