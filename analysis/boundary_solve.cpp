@@ -1,6 +1,7 @@
 #include "analysis/boundary_solve.hpp"
 
 #include <cmath>
+#include <limits>
 #include <new>
 #include <string>
 
@@ -11,6 +12,7 @@
 #include "core/memory.hpp"
 #include "core/memory_watch.hpp"
 #include "core/number_text.hpp"
+#include "core/solver_memory_refusal.hpp"
 
 namespace bemshape::analysis {
 
@@ -47,29 +49,26 @@ geometry::GradedMeshParameters wall_reading_mesh_parameters(double h0, double a,
   return p;
 }
 
-BoundarySolve solve_boundary(const geometry::PreparedMesh& input, const SolveOptions& options,
-                             StageTimes& times, const ProgressCallback& progress) {
-  validate(options);
-  // The running account of the process's memory while it remeshes and solves: a run that
-  // outgrows its budget stops at the next poll point with a ResourceError.
-  const MemoryWatch watch(options.max_memory_bytes);
+namespace {
+
+/// An edge --fit-memory tries is at least this much longer than the last one refused.
+constexpr double kFitEdgeStep = 1.1;
+
+/// No face limit on the dense path (--solver dense).
+constexpr long kNoFaceLimit = std::numeric_limits<long>::max() - 1;
+
+/// A closed surface has at least 4 triangles: a fitting mesh of fewer faces does not exist.
+constexpr double kFewestSolverFaces = 4.0;
+
+/// Remeshes `input` to run.max_edge (graded: the wall reading's mesh) and solves on it; with
+/// `check_only`, stops after the solver's memory check and returns its estimate [bytes].
+/// Throws SolverMemoryRefusal where the solver's estimate does not fit, before allocating.
+std::uint64_t mesh_and_solve(const geometry::PreparedMesh& input, const SolveOptions& options,
+                             const bem::TransmissionParameters& parameters, bool graded,
+                             const geometry::GradedMeshParameters& graded_parameters,
+                             BoundarySolve& run, const ProgressCallback& progress,
+                             StageTimes& times, bool check_only) {
   const std::string& source = input.report.source;
-  const auto parameters = bem::TransmissionParameters::from_shape(options.h0, options.a);
-  BoundarySolve run;
-  const bool graded = !options.max_edge && options.mesh_rule == SolverMeshRule::wall_reading;
-  const geometry::GradedMeshParameters graded_parameters =
-      wall_reading_mesh_parameters(options.h0, options.a, options.sharp_angle_degrees);
-  if (options.max_edge) {
-    run.max_edge = *options.max_edge;
-    run.max_edge_rule = "--max-edge";
-  } else if (graded) {
-    run.max_edge = graded_parameters.max_edge_ratio * options.h0;
-    run.max_edge_rule = "graded for the wall reading: about the local wall, at most " +
-                        number_text(graded_parameters.max_edge_ratio, 3) + "*h0";
-  } else {
-    run.max_edge = parameters.default_max_edge();
-    run.max_edge_rule = "default rule 3/kappa = 1.5*a*h0";
-  }
   // Before remeshing: a solver mesh of about area/(0.43·edge²) faces (fewer than the
   // remesher makes) whose fast path cannot fit even at its smallest (preconditioner and
   // the shortest Krylov bases) is refused now rather than after minutes of remeshing.
@@ -81,14 +80,17 @@ BoundarySolve solve_boundary(const geometry::PreparedMesh& input, const SolveOpt
         process_memory().resident +
         bem::hmatrix_solver_minimum_bytes(Eigen::Index(predicted_faces), bem::HMatrixSolverOptions{});
     if (limit > 0 && least > limit)
-      throw ResourceError(
-          source + ": the hierarchical-matrix BEM system of about " +
-          std::to_string(std::llround(predicted_faces)) + " solver faces (edge " +
-          number_text(run.max_edge, 3) + ", " + run.max_edge_rule + ") needs more than " +
-          number_text(double(least) / 1e9, 3) + " GB but only " +
-          number_text(double(limit) / 1e9, 3) + " GB may be used" + reason +
-          "; use a coarser mesh (larger --max-edge)" +
-          (reason == " (--max-memory)" ? " or a larger --max-memory" : ""));
+      throw SolverMemoryRefusal(
+          "the hierarchical-matrix BEM system of about " +
+              std::to_string(std::llround(predicted_faces)) + " solver faces (edge " +
+              number_text(run.max_edge, 3) + ", " + run.max_edge_rule + ") needs more than " +
+              number_text(double(least) / 1e9, 3) + " GB but only " +
+              number_text(double(limit) / 1e9, 3) + " GB may be used" + reason +
+              "; use a coarser mesh (larger --max-edge)" +
+              (reason == " (--max-memory)" ? " or a larger --max-memory" : ""),
+          SolverMemoryRefusal::Solver::hmatrix, std::lround(predicted_faces), double(least),
+          double(limit),
+          double(process_memory().resident));
   }
   set_memory_context(source + ": remeshing to edge " + number_text(run.max_edge, 3) + " (" +
                          run.max_edge_rule + ")",
@@ -122,9 +124,12 @@ BoundarySolve solve_boundary(const geometry::PreparedMesh& input, const SolveOpt
     hmatrix.single_precision = solver.tolerance >= 1e-6;
     hmatrix.max_memory_bytes = options.max_memory_bytes;
     hmatrix.far_field = solver.far_field;
+    hmatrix.estimate_only = check_only;
     try {
       run.solution =
           bem::solve_transmission_hmatrix(run.solver_mesh, parameters, hmatrix, progress);
+    } catch (const SolverMemoryRefusal&) {
+      throw;  // its estimate was over the budget before assembly: solve_boundary names a mesh
     } catch (const ResourceError& refused) {
       // The solver's estimate was over the budget before assembly, or the memory watch
       // stopped the assembly: name the input too.
@@ -136,6 +141,7 @@ BoundarySolve solve_boundary(const geometry::PreparedMesh& input, const SolveOpt
                           number_text(run.max_edge, 3) +
                           "); use a coarser mesh (larger --max-edge) or a larger --max-memory");
     }
+    return run.solution.report.memory_estimate_bytes;
   } else {
     // The refusal names a --max-edge that fits; flat walls stay accurate up to κ·h = 5.
     const DenseSystemRefusal refusal{source,
@@ -144,7 +150,20 @@ BoundarySolve solve_boundary(const geometry::PreparedMesh& input, const SolveOpt
                                      run.max_edge_rule,
                                      2.5 * options.a * options.h0,
                                      options.max_memory_bytes};
-    require_dense_system_fits(refusal);
+    const std::uint64_t budget = memory_budget_bytes(options.max_memory_bytes);
+    // The dense solver's own bound on the peak (what the process holds, the system, the
+    // work per face), so that --fit-memory inverts the figure the refusal is made on.
+    const double held = double(process_memory().resident);
+    const double needed = double(bem::dense_solver_peak_bytes(faces, std::uint64_t(held)));
+    if (budget > 0 && needed > double(budget))
+      throw SolverMemoryRefusal(
+          "the dense BEM solver needs " + number_text(needed / 1e9, 3) + " GB for " +
+              std::to_string(faces) + " solver faces (edge " + number_text(run.max_edge, 3) +
+              ", " + run.max_edge_rule + ") but only " + number_text(double(budget) / 1e9, 3) +
+              " GB may be used" + memory_budget_reason(options.max_memory_bytes),
+          SolverMemoryRefusal::Solver::dense, long(faces), needed, double(budget), held);
+    if (check_only)
+      return std::uint64_t(needed);
     bem::DenseSolverOptions dense;
     dense.max_memory_bytes = options.max_memory_bytes;
     try {
@@ -152,8 +171,100 @@ BoundarySolve solve_boundary(const geometry::PreparedMesh& input, const SolveOpt
     } catch (const ResourceError& stopped) {
       if (detail::memory_overrun.load())  // the memory watch stopped the assembly
         throw ResourceError(source + ": " + stopped.what());
-      // The machine's free memory dropped between our check and the allocation.
-      refuse_dense_system(refusal, memory_budget_bytes(options.max_memory_bytes));
+      // The machine's free memory dropped between our check and the allocation: refused
+      // as it stands (the message names the input and a --max-edge that fits).
+      try {
+        refuse_dense_system(refusal, memory_budget_bytes(options.max_memory_bytes));
+      } catch (const SolverMemoryRefusal& refused) {
+        throw ResourceError(refused.what());
+      }
+    }
+    return run.solution.report.memory_estimate_bytes;
+  }
+}
+
+}  // namespace
+
+BoundarySolve solve_boundary(const geometry::PreparedMesh& input, const SolveOptions& options,
+                             StageTimes& times, const ProgressCallback& progress) {
+  validate(options);
+  // The running account of the process's memory while it remeshes and solves: a run that
+  // outgrows its budget stops at the next poll point with a ResourceError.
+  const MemoryWatch watch(options.max_memory_bytes);
+  const std::string& source = input.report.source;
+  const auto parameters = bem::TransmissionParameters::from_shape(options.h0, options.a);
+  BoundarySolve run;
+  bool graded = !options.max_edge && options.mesh_rule == SolverMeshRule::wall_reading;
+  const geometry::GradedMeshParameters graded_parameters =
+      wall_reading_mesh_parameters(options.h0, options.a, options.sharp_angle_degrees);
+  if (options.max_edge) {
+    run.max_edge = *options.max_edge;
+    run.max_edge_rule = "--max-edge";
+  } else if (graded) {
+    run.max_edge = graded_parameters.max_edge_ratio * options.h0;
+    run.max_edge_rule = "graded for the wall reading: about the local wall, at most " +
+                        number_text(graded_parameters.max_edge_ratio, 3) + "*h0";
+  } else {
+    run.max_edge = parameters.default_max_edge();
+    run.max_edge_rule = "default rule 3/kappa = 1.5*a*h0";
+  }
+  // The solver mesh and its solve. Where the solver's estimate does not fit the budget
+  // (SolverMemoryRefusal, before anything large is allocated), a uniform mesh is predicted
+  // from that estimate and remeshed, and the solver's estimate on it decides (a longer edge
+  // where it still does not fit): with fit_memory it is solved on, else the refusal names it.
+  const double area = input.mesh.area();
+  const long dense_up_to = options.solver.method == SolverMethod::dense     ? kNoFaceLimit
+                           : options.solver.method == SolverMethod::hmatrix ? 0
+                                                                            : kAutoDenseFaces;
+  std::string first_refusal;  // the default mesh's refusal, what a refusal says first
+  for (int attempt = 0;; ++attempt) {
+    const bool check_only = attempt > 0 && !options.fit_memory;
+    try {
+      const std::uint64_t estimate = mesh_and_solve(input, options, parameters, graded,
+                                                    graded_parameters, run, progress, times,
+                                                    check_only);
+      if (!check_only)
+        break;
+      throw ResourceError(source + ": " + first_refusal + "; a mesh that fits: --max-edge " +
+                          number_text(run.max_edge, 3) + " (" +
+                          std::to_string(run.solver_mesh.num_faces()) +
+                          " solver faces, estimated peak " +
+                          number_text(double(estimate) / 1e9, 3) + " GB; " +
+                          fitting_mesh_accuracy(run.max_edge, options.h0, options.a) +
+                          "), or --fit-memory to take it");
+    } catch (const SolverMemoryRefusal& refused) {
+      if (attempt == 0)
+        first_refusal = refused.what();
+      const double target = fitting_solver_faces(refused, dense_up_to);
+      if (target < kFewestSolverFaces)
+        throw ResourceError(source + ": " + first_refusal +
+                            "; no coarser mesh fits: the process holds " +
+                            number_text(refused.held_bytes / 1e9, 3) + " GB already");
+      if (attempt == kMemoryFitAttempts)
+        throw ResourceError(source + ": " + first_refusal + "; no uniform mesh fitted in " +
+                            std::to_string(kMemoryFitAttempts) + " tries, the last (edge " +
+                            number_text(run.max_edge, 3) + ") " + refused.what());
+      // A uniform mesh already made calibrates the prediction by the remesher's own count.
+      const bool uniform = !run.graded && run.solver_mesh.num_faces() == refused.faces;
+      double edge = uniform ? run.max_edge * std::sqrt(double(refused.faces) / target)
+                            : uniform_mesh_edge_for_faces(area, target);
+      if (uniform)
+        edge = std::max(edge, kFitEdgeStep * run.max_edge);
+      // The edge as the message prints it, so that the --max-edge named is the one checked.
+      edge = fitting_edge_text_value(edge);
+      if (options.fit_memory) {
+        if (!run.memory_fit)
+          run.memory_fit = MemoryFit{refused.faces, refused.needed_bytes, refused.budget_bytes, 0};
+        ++run.memory_fit->attempts;
+      }
+      run.max_edge = edge;
+      run.max_edge_rule = "uniform, predicted to fit the memory budget";
+      run.graded.reset();
+      graded = false;
+      report_progress(progress,
+                      "fitting the memory budget: --max-edge " + number_text(edge, 3) +
+                          " (about " + std::to_string(std::lround(target)) + " solver faces)",
+                      0.0);
     }
   }
   times.add("assemble", run.solution.report.assembly_seconds);

@@ -102,6 +102,9 @@ inline constexpr double kWallMeshCreaseAngle = 5.0;
 /// segments turns by 15° per vertex. TODO-measured.
 inline constexpr double kWallMeshCurveTurn = 15.0;
 
+/// Meshes --fit-memory tries after the refused one before it refuses too.
+inline constexpr int kMemoryFitAttempts = 4;
+
 /// The graded mesh of the wall reading for h0 and a (SolverMeshRule::wall_reading).
 geometry::GradedMeshParameters wall_reading_mesh_parameters(double h0, double a,
                                                             std::optional<double> sharp_angle_degrees);
@@ -118,7 +121,18 @@ struct SolveOptions {
   /// for surface values and --max-edge, kWallMeshCreaseAngle for the wall reading's mesh).
   std::optional<double> sharp_angle_degrees;
   std::uint64_t max_memory_bytes = 0;  ///< memory the solve may use; 0 = what the machine has
+  /// Where the solver on the default mesh (or max_edge) would not fit: solve on the uniform
+  /// mesh predicted to fit instead of refusing (--fit-memory; BoundarySolve::memory_fit).
+  bool fit_memory = false;
   SolverChoice solver;
+};
+
+/// The mesh --fit-memory took in place of one whose solver did not fit.
+struct MemoryFit {
+  long refused_faces = 0;         ///< solver faces of the mesh that did not fit
+  double refused_bytes = 0.0;     ///< its solver's estimate [bytes]
+  double budget_bytes = 0.0;      ///< what may be used [bytes]
+  int attempts = 0;               ///< meshes refused before the one solved on
 };
 
 /// Throws InputError naming the first option out of its range (h0, a, sharp angle,
@@ -132,13 +146,17 @@ struct BoundarySolve {
   std::string max_edge_rule;          ///< "--max-edge", "default rule 3/kappa = 1.5*a*h0" or the graded rule
   /// The graded mesh's report (SolverMeshRule::wall_reading without max_edge), else empty.
   std::optional<geometry::GradedMeshReport> graded;
+  /// Set when SolveOptions::fit_memory replaced a mesh that did not fit.
+  std::optional<MemoryFit> memory_fit;
   bem::BoundarySolution solution;     ///< φ, q: #F×3 on solver_mesh
 };
 
 /// Refines `input` and solves on it, timing the stages in `times` as "refine", "assemble"
 /// and "solve". Validates `options` first. Throws InputError for unusable options and
-/// ResourceError (one line naming the input, and for the dense path a --max-edge that fits)
-/// when the system does not fit in memory (analysis/memory_budget.hpp).
+/// ResourceError when the system does not fit in memory (analysis/memory_budget.hpp): where
+/// the solver's estimate is over the budget, one line naming the input and a uniform
+/// --max-edge whose mesh the solver's estimate accepts, with the accuracy to expect there;
+/// with fit_memory that mesh is solved on instead (at most kMemoryFitAttempts meshes tried).
 BoundarySolve solve_boundary(const geometry::PreparedMesh& input, const SolveOptions& options,
                              StageTimes& times, const ProgressCallback& progress = {});
 

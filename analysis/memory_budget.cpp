@@ -9,6 +9,7 @@
 #include "core/errors.hpp"
 #include "core/memory.hpp"
 #include "core/number_text.hpp"
+#include "core/solver_memory_refusal.hpp"
 #include "fem/voxel_grid.hpp"
 
 namespace bemshape::analysis {
@@ -54,7 +55,53 @@ void refuse_dense_system(const DenseSystemRefusal& refusal, std::uint64_t budget
       << "--max-edge " << number_text(edge, 3) << " (about " << std::lround(fitting_faces)
       << " faces; flat walls stay accurate up to --max-edge "
       << number_text(refusal.flat_wall_max_edge, 3) << ")";
-  throw ResourceError(msg.str());
+  throw SolverMemoryRefusal(msg.str(), SolverMemoryRefusal::Solver::dense,
+                            long(refusal.solver_faces), needed, double(budget), 0.0);
+}
+
+double fitting_solver_faces(const SolverMemoryRefusal& refused, long dense_up_to) {
+  const double room = kFitMargin * refused.budget_bytes;
+  const auto held = std::uint64_t(std::max(refused.held_bytes, 0.0));
+  // Above dense_up_to faces the hierarchical-matrix path solves. Its estimate depends on the
+  // geometry (near field, ranks) but beyond what the process holds grows about like N: the
+  // refused mesh's own estimate scaled to the room left.
+  if (refused.solver == SolverMemoryRefusal::Solver::hmatrix) {
+    const double per_face_need =
+        std::max(refused.needed_bytes - refused.held_bytes, 1.0) / double(refused.faces);
+    const double faces = std::max(room - refused.held_bytes, 0.0) / per_face_need;
+    if (faces > double(dense_up_to))
+      return faces;
+  }
+  // At or below dense_up_to the dense path solves, and its bound (what the process holds,
+  // the system and its copy, the work per face) is a closed form increasing in N: the
+  // largest N whose bound fits, by bisection.
+  long low = 0, high = std::min(refused.faces, dense_up_to) + 1;
+  while (high - low > 1) {
+    const long mid = low + (high - low) / 2;
+    (double(bem::dense_solver_peak_bytes(mid, held)) <= room ? low : high) = mid;
+  }
+  return double(low);
+}
+
+double fitting_edge_text_value(double edge) {
+  return std::stod(number_text(round_up_3_digits(edge), 3));
+}
+
+double uniform_mesh_edge_for_faces(double area, double faces) {
+  return std::sqrt(area / (kRemeshedFaceAreaRatio * std::max(faces, 1.0)));
+}
+
+std::string fitting_mesh_accuracy(double edge, double h0, double a) {
+  const double surface_values_edge = 1.5 * a * h0, flat_wall_edge = 2.5 * a * h0;
+  if (edge <= surface_values_edge)
+    return "as accurate as the default: values on the surface within about 1 %";
+  if (edge <= flat_wall_edge)
+    return "flat walls stay accurate up to --max-edge " + number_text(flat_wall_edge, 3) +
+           ", curved walls lose some accuracy beyond 1.5*a*h0 = " +
+           number_text(surface_values_edge, 3);
+  return "coarser than 2.5*a*h0 = " + number_text(flat_wall_edge, 3) +
+         ", the largest edge at which flat walls stay accurate: the readings are not "
+         "validated there; a larger --max-memory keeps them accurate";
 }
 
 template <int D>

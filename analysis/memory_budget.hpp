@@ -20,6 +20,7 @@
 
 #include <Eigen/Core>
 
+#include "core/solver_memory_refusal.hpp"
 #include "features/feature_parameters.hpp"
 #include "fem/binary_image.hpp"
 #include "fem/characteristic_function.hpp"
@@ -51,6 +52,36 @@ void require_dense_system_fits(const DenseSystemRefusal& refusal);
 /// percent).
 [[noreturn]] void refuse_dense_system(const DenseSystemRefusal& refusal,
                                       std::uint64_t budget_bytes);
+
+/// A uniform solver mesh of target edge e (geometry::refine_to_edge_length, edges up to 1.3·e)
+/// over a surface of area A has about A/(kRemeshedFaceAreaRatio·e²) faces: its triangles are
+/// smaller than the equilateral one of side e (√3/4 ≈ 0.433). Measured on the remesher's
+/// output (docs/usage.md, "Solver size"); a first guess only: the solver's
+/// estimate on the remeshed mesh decides.
+inline constexpr double kRemeshedFaceAreaRatio = 0.29;
+
+/// The share of the budget a mesh chosen to fit aims at: the estimate on the remeshed mesh,
+/// whose face count the prediction misses by a few per cent, must still fit.
+inline constexpr double kFitMargin = 0.85;
+
+/// The solver faces to aim at so that a refused solve fits kFitMargin of the budget, by the
+/// estimate of the solver that takes them: above `dense_up_to` faces the hierarchical-matrix
+/// one (the refused mesh's estimate beyond what the process holds, scaled like N), at or
+/// below it the dense path's bound bem::dense_solver_peak_bytes (inverted exactly). 0 where
+/// nothing fits.
+double fitting_solver_faces(const SolverMemoryRefusal& refused, long dense_up_to);
+
+/// The target edge of a uniform solver mesh of about `faces` faces over `area`.
+double uniform_mesh_edge_for_faces(double area, double faces);
+
+/// `edge` rounded up to the 3 significant digits a message prints it with, so that the
+/// --max-edge a refusal names is the edge it confirmed.
+double fitting_edge_text_value(double edge);
+
+/// What accuracy to expect at a uniform --max-edge `edge`, from the element size rules
+/// (docs/usage.md, "Element size"): surface values within about 1 % up to 1.5·a·h0, flat
+/// walls accurate up to 2.5·a·h0, beyond that not validated.
+std::string fitting_mesh_accuracy(double edge, double h0, double a);
 
 /// What a voxel run's memory check needs to know about its request.
 struct VoxelMemoryBudget {

@@ -60,6 +60,7 @@ struct CheckAllOptions {
   std::optional<double> sharp_angle;  // empty: the solver mesh rule's default
   SolverChoiceText solver;
   std::uint64_t max_memory_bytes = 0;
+  bool fit_memory = false;  // --fit-memory, passed to every part
 };
 
 /// Seconds a part may run past --timeout before it is sent SIGTERM, and again before
@@ -109,6 +110,8 @@ std::vector<std::string> result_arguments(const CheckAllOptions& o) {
   add("--max-thickness", o.max_thickness);
   add("--min-region-area", o.min_region_area);
   add("--max-edge", o.max_edge);
+  if (o.fit_memory)
+    args.push_back("--fit-memory");
   return args;
 }
 
@@ -551,6 +554,9 @@ void register_check_all_command(CLI::App& app, int& exit_code) {
          "Memory limit of each part: MB, or with a unit, e.g. 800MB, 2G (default: the "
          "machine's memory divided among the jobs)")
       ->type_name("SIZE");
+  cmd->add_flag("--fit-memory", o->fit_memory,
+                "As thickness's --fit-memory: a part whose solver mesh does not fit its memory "
+                "limit is solved on the coarser mesh predicted to fit");
   cmd->callback([o, &exit_code] { run_check_all(*o, exit_code); });
 }
 

@@ -65,6 +65,7 @@ struct ThicknessOptions {
   int threads = 0;
   bool quiet = false;
   std::uint64_t max_memory_bytes = 0;
+  bool fit_memory = false;  // --fit-memory
 };
 
 enum class OutputFormat { none, vtp, ply, csv };
@@ -377,6 +378,7 @@ void run_thickness(const ThicknessOptions& options, int& exit_code) {
   analysis::ThicknessOptions job;
   job.solve = solve_options(h0_given, options.a, options.max_edge, options.sharp_angle,
                             options.solver, options.max_memory_bytes);
+  job.solve.fit_memory = options.fit_memory;
   job.h0_from_part = h0_from_part;
   job.measure = measure;
   job.edges = edges;
@@ -387,6 +389,8 @@ void run_thickness(const ThicknessOptions& options, int& exit_code) {
   const ThicknessResult result =
       analysis::measure_thickness(fs::path(options.input), job, display.callback());
   const double h0 = result.h0;
+  if (const std::string note = memory_fit_note(result.boundary); !note.empty())
+    std::cerr << "bemshape: " << note << '\n';  // even with --quiet: the accuracy changed
   times.add(result.times);
   if (format != OutputFormat::none)
     times.time("write", [&] {
@@ -496,6 +500,10 @@ void register_thickness_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--threads", options->threads, "Number of threads (default: all cores)");
   cmd->add_flag("--quiet", options->quiet, "No progress on stderr");
   add_max_memory_option(*cmd, options->max_memory_bytes);
+  cmd->add_flag("--fit-memory", options->fit_memory,
+                "Where the solver mesh does not fit --max-memory (or the machine), solve on the "
+                "coarser uniform mesh predicted to fit instead of refusing; the report says so "
+                "(mesh.memory_fit)");
   add_timeout_option(*cmd);
   cmd->callback([options, &exit_code] { run_thickness(*options, exit_code); });
 }

@@ -74,7 +74,7 @@ py::dict thickness(const py::handle& V, const py::handle& F, std::optional<doubl
                    std::optional<std::string> measure, double a, std::optional<double> max_edge,
                    std::optional<double> sharp_angle, const std::string& solver,
                    const std::string& far_field, double tolerance, std::optional<int> threads,
-                   std::optional<double> max_memory, py::object progress,
+                   std::optional<double> max_memory, bool fit_memory, py::object progress,
                    const std::string& name) {
   const Eigen::MatrixX3d vertices = positions_from_array(V, "V");
   const Eigen::MatrixX3i faces = indices_from_array(F, "F");
@@ -85,6 +85,7 @@ py::dict thickness(const py::handle& V, const py::handle& F, std::optional<doubl
       h0 ? *h0 : min_thickness.value_or(1.0), a, max_edge,
       sharp_angle,
       apps::SolverChoiceText{solver, tolerance, far_field}, memory_bytes(max_memory));
+  job.solve.fit_memory = fit_memory;
   if (measure)
     job.measure = analysis::thickness_measure(*measure);
   job.min_thickness = min_thickness;
@@ -155,11 +156,11 @@ void register_thickness_function(py::module_& module) {
       py::arg("a") = 0.2, py::arg("max_edge") = py::none(), py::arg("sharp_angle") = py::none(),
       py::arg("solver") = solver.method, py::arg("far_field") = solver.far_field,
       py::arg("tolerance") = solver.tolerance, py::arg("threads") = py::none(),
-      py::arg("max_memory") = py::none(), py::arg("progress") = py::none(),
-      py::arg("name") = "numpy arrays",
+      py::arg("max_memory") = py::none(), py::arg("fit_memory") = false,
+      py::arg("progress") = py::none(), py::arg("name") = "numpy arrays",
       R"(thickness(V, F, *, h0=None, min_thickness=None, max_thickness=None, measure=None,
           a=0.2, max_edge=None, sharp_angle=None, solver="auto", far_field="auto",
-          tolerance=1e-6, threads=None, max_memory=None, progress=None,
+          tolerance=1e-6, threads=None, max_memory=None, fit_memory=False, progress=None,
           name="numpy arrays") -> dict
 
 The local wall thickness of the solid bounded by the triangles F (int (m, 3), 0-based) over
@@ -174,7 +175,9 @@ max_thickness: every connected set of thicker faces is a thick region (report's
 measure: "wall" (the default: the thickness of the wall a point belongs to, read at the
     wall's mid-surface), "sphere"/"principal" (h_p at the point) or "paper" (h_f).
 a, max_edge, sharp_angle, solver, far_field, tolerance: as the command line's --a, ...
-threads: OpenMP threads for this call. max_memory: bytes the solve may use.
+threads: OpenMP threads for this call. max_memory: bytes the solve may use. fit_memory: where
+    the solver mesh does not fit, solve on the coarser uniform mesh predicted to fit (the
+    report's mesh["memory_fit"] says so) instead of raising ResourceError.
 progress: callable(stage, fraction), called from the solve (with the GIL held).
 
 Returns a dict:

@@ -1,6 +1,7 @@
 #include "apps/report/report_json.hpp"
 
 #include "core/huge_pages.hpp"
+#include "core/number_text.hpp"
 
 namespace bemshape::apps {
 
@@ -42,7 +43,32 @@ nlohmann::json mesh_json(const geometry::MeshReport& input, const analysis::Boun
           {"area", input.area},
           {"volume", input.volume},
           {"repairs", input.repairs},
-          {"graded", graded}};
+          {"graded", graded},
+          {"memory_fit", memory_fit_json(run)}};
+}
+
+nlohmann::json memory_fit_json(const analysis::BoundarySolve& run) {
+  if (!run.memory_fit)
+    return nullptr;
+  const analysis::MemoryFit& f = *run.memory_fit;
+  return {{"fitted", true},
+          {"refused_faces", f.refused_faces},
+          {"refused_gb", f.refused_bytes / 1e9},
+          {"budget_gb", f.budget_bytes / 1e9},
+          {"attempts", f.attempts},
+          {"max_edge", run.max_edge},
+          {"solver_faces", run.solver_mesh.num_faces()}};
+}
+
+std::string memory_fit_note(const analysis::BoundarySolve& run) {
+  if (!run.memory_fit)
+    return {};
+  const analysis::MemoryFit& f = *run.memory_fit;
+  return "--fit-memory: the solver mesh of " + std::to_string(f.refused_faces) + " faces needed " +
+         number_text(f.refused_bytes / 1e9, 3) + " GB of the " +
+         number_text(f.budget_bytes / 1e9, 3) + " GB budget; solved instead on a uniform mesh of "
+         "--max-edge " + number_text(run.max_edge, 3) + " (" +
+         std::to_string(run.solver_mesh.num_faces()) + " faces)";
 }
 
 nlohmann::json solver_json(const analysis::BoundarySolve& run) {

@@ -32,6 +32,13 @@ nlohmann::json mesh_json(const geometry::MeshReport& input, const analysis::Boun
 /// The linear solver's method, size, iterations, residuals, operator memory and stage times.
 nlohmann::json solver_json(const analysis::BoundarySolve& run);
 
+/// mesh.memory_fit: null, or what --fit-memory refused and took instead (its faces, the
+/// refused estimate and the budget in GB, meshes tried, the edge and faces solved on).
+nlohmann::json memory_fit_json(const analysis::BoundarySolve& run);
+
+/// The one stderr line --fit-memory writes when it replaced the mesh; empty if it did not.
+std::string memory_fit_note(const analysis::BoundarySolve& run);
+
 /// {stage: seconds, ..., "total": seconds since `times` was constructed}.
 nlohmann::json timing_json(const analysis::StageTimes& times);
 

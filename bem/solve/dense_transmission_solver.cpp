@@ -46,6 +46,11 @@ std::uint64_t dense_solver_memory_bytes(Eigen::Index faces) {
   return 2 * n * n * sizeof(double);
 }
 
+std::uint64_t dense_solver_peak_bytes(Eigen::Index faces, std::uint64_t held_bytes) {
+  return held_bytes + std::uint64_t(kDenseSystemMargin * double(dense_solver_memory_bytes(faces)) +
+                                    kDenseWorkBytesPerFace * double(faces));
+}
+
 BoundarySolution solve_transmission_dense(const geometry::SurfaceMesh& mesh,
                                           const TransmissionParameters& parameters,
                                           const DenseSolverOptions& options,
@@ -61,10 +66,7 @@ BoundarySolution solve_transmission_dense(const geometry::SurfaceMesh& mesh,
   }
   // The bound on the process's peak: what it holds, the system, the tables of touching
   // pairs and the rows' work arrays (kDenseWorkBytesPerFace).
-  const std::uint64_t estimate =
-      process_memory().resident +
-      std::uint64_t(kDenseSystemMargin * double(dense_solver_memory_bytes(n)) +
-                    kDenseWorkBytesPerFace * double(n));
+  const std::uint64_t estimate = dense_solver_peak_bytes(n, process_memory().resident);
   set_memory_context("the dense BEM system of " + std::to_string(n) + " faces",
                      "use a coarser mesh (larger --max-edge), the hierarchical-matrix solver "
                      "(--solver hmatrix) or a larger --max-memory");

@@ -28,6 +28,12 @@ struct DenseSolverOptions {
 /// Bytes the dense path allocates for a mesh of `faces` faces.
 std::uint64_t dense_solver_memory_bytes(Eigen::Index faces);
 
+/// The dense path's bound on the process's peak for `faces` faces [bytes]: `held_bytes` (what
+/// the process holds already), the system and its copy with a margin for the heap's rounding,
+/// and the panels, tables of touching pairs and work arrays per face. The guard of
+/// solve_transmission_dense refuses where it exceeds the budget; --fit-memory inverts it.
+std::uint64_t dense_solver_peak_bytes(Eigen::Index faces, std::uint64_t held_bytes);
+
 /// Solves for s_1, s_2, s_3 on a closed, outward-oriented mesh. Throws ResourceError if the
 /// matrix would not fit and NumericalError if the factorisation is singular or the solution
 /// is not finite.

@@ -21,6 +21,7 @@
 #include "core/memory.hpp"
 #include "core/memory_watch.hpp"
 #include "core/number_text.hpp"
+#include "core/solver_memory_refusal.hpp"
 
 #include <omp.h>
 
@@ -353,12 +354,21 @@ BoundarySolution solve_transmission_hmatrix(const geometry::SurfaceMesh& mesh,
   const std::string instead = std::string("use a coarser mesh (larger --max-edge)") +
                               (nested_smaller ? ", --far-field nested" : "") + larger_limit;
   if (budget > 0 && needed > budget)
-    throw ResourceError(what + " needs " + number_text(double(needed) / 1e9, 3) +
-                        " GB (estimated peak of the process) but only " +
-                        number_text(double(budget) / 1e9, 3) + " GB may be used" +
-                        budget_reason + "; " + instead);
+    throw SolverMemoryRefusal(what + " needs " + number_text(double(needed) / 1e9, 3) +
+                                  " GB (estimated peak of the process) but only " +
+                                  number_text(double(budget) / 1e9, 3) + " GB may be used" +
+                                  budget_reason + "; " + instead,
+                              SolverMemoryRefusal::Solver::hmatrix, long(n), double(needed),
+                              double(budget), double(held));
   set_memory_context(what + " (estimated peak " + number_text(double(needed) / 1e9, 3) + " GB)",
                      instead);
+  if (options.estimate_only) {
+    BoundarySolution estimated;
+    estimated.parameters = parameters;
+    estimated.report.memory_estimate_bytes = needed;
+    estimated.report.unknowns = 2 * n;
+    return estimated;
+  }
 
   report_progress(progress, "assemble", 0.0);
   const auto interior_start = Clock::now();

@@ -91,6 +91,9 @@ struct HMatrixSolverOptions {
   /// What the process holds besides the solver, counted into the estimate [bytes]; empty:
   /// its resident size when the estimate is made (tests set it to make the estimate exact).
   std::optional<std::uint64_t> held_bytes;
+  /// Stop after the memory check: the result holds only report.memory_estimate_bytes (and
+  /// unknowns). analysis::solve_boundary confirms with it that a mesh a refusal names fits.
+  bool estimate_only = false;
 };
 
 /// The admissible blocks of the Laplace row split by how `--far-field nested` keeps them:

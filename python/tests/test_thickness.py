@@ -120,6 +120,33 @@ def test_errors_map_to_the_python_exceptions_users_expect():
     assert isinstance(refused.value, bemshape.ResourceError)
 
 
+def resident_bytes():
+    with open("/proc/self/status") as status:
+        for line in status:
+            if line.startswith("VmRSS:"):
+                return int(line.split()[1]) * 1024
+    raise RuntimeError("no VmRSS in /proc/self/status")
+
+
+def test_fit_memory_solves_on_the_coarser_mesh_the_refusal_names_within_the_budget():
+    # The dense system of the ball at edge 0.05 (about 2900 faces) needs about 270 MB; 40 MB
+    # above what the interpreter holds fits a few hundred faces.
+    V, F = icosphere(RADIUS, 2)
+    budget = resident_bytes() + 40e6
+    with pytest.raises(MemoryError, match=r"a mesh that fits: --max-edge [0-9.]+ \(") as refused:
+        bemshape.thickness(V, F, h0=H0, solver="dense", max_edge=0.05, max_memory=budget)
+    assert str(refused.value).endswith("or --fit-memory to take it")
+    result = bemshape.thickness(V, F, h0=H0, solver="dense", max_edge=0.05, max_memory=budget,
+                                fit_memory=True)
+    fit = result["report"]["mesh"]["memory_fit"]
+    assert fit["fitted"] and fit["max_edge"] > 0.05
+    assert fit["solver_faces"] == result["report"]["mesh"]["solver_faces"] < fit["refused_faces"]
+    # The solver's bound on the peak fits (peak_mb is this interpreter's lifetime peak, taken
+    # by the earlier tests; the memory watch would have raised had the solve outgrown it).
+    assert result["report"]["memory"]["estimate_mb"] * 1e6 <= budget
+    assert np.all(np.isfinite(result["face"]["thickness"]))
+
+
 def test_wall_measure_is_the_default_and_reads_the_diameter_with_thick_regions():
     V, F = icosphere(RADIUS, 3)
     result = bemshape.thickness(V, F, h0=H0, max_thickness=0.5 * RADIUS)

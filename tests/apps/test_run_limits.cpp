@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <fstream>
+#include <regex>
 #include <thread>
 
 #include "tests/support/labelled_parts.hpp"
@@ -234,9 +235,72 @@ TEST_CASE("hmatrix --max-memory: a part whose estimate exceeds it is refused in 
                                ": the hierarchical-matrix BEM system of ") &&
                  Catch::Contains(" GB (estimated peak of the process) but only 1 GB may be "
                                  "used (--max-memory); use a coarser mesh (larger --max-edge)") &&
-                 Catch::EndsWith("or a larger --max-memory"));
-  CHECK(r.seconds < bemshape::test::time_bound(60.0));  // remeshing and counting; nothing assembled
+                 Catch::Contains("or a larger --max-memory; a mesh that fits: --max-edge ") &&
+                 Catch::EndsWith("or --fit-memory to take it"));
+  // Remeshing, counting, and remeshing and counting again at the edge named; nothing assembled.
+  CHECK(r.seconds < bemshape::test::time_bound(60.0));
   CHECK_FALSE(fs::exists(out));
+}
+
+TEST_CASE(
+    "thickness --max-memory below the default mesh's need: the refusal names a --max-edge that "
+    "fits, and --fit-memory takes a mesh that fits itself, saying so") {
+  // The L-bracket (labelled part, 32 segments) at its default graded mesh: about 5800 solver
+  // faces, an H-matrix estimate of 0.16 GB. 50 MB (plus the sanitizers' overhead) is above
+  // what the process holds (about 22 MB) and far below that estimate: the fitting mesh has a
+  // few hundred faces, solved densely in seconds.
+  const std::string mesh =
+      write_mesh(testing::make_labelled_part("l-bracket", 32).mesh, "fit_bracket.stl");
+  const double budget_mb = double(bemshape::test::resident_bound_mb(50));
+  const std::string budget = " --max-memory " + std::to_string(long(budget_mb)) + "MB";
+  const Run refused = run_bemshape("thickness '" + mesh + "' --min-thickness 2" + budget + " --quiet");
+  CAPTURE(refused.err);
+  REQUIRE(refused.exit_code == 2);  // refused, not ended by a signal
+  std::smatch named_mesh;
+  const std::string line = refused.first_error_line();
+  REQUIRE(std::regex_search(
+      line, named_mesh,
+      std::regex("; a mesh that fits: --max-edge ([0-9.e+-]+) \\(([0-9]+) solver faces, "
+                 "estimated peak ([0-9.e+-]+) GB; ([^)]*)\\), or --fit-memory to take it$")));
+  const std::string edge = named_mesh[1].str();
+  const long named_faces = std::stol(named_mesh[2].str());
+  CHECK(std::stod(named_mesh[3].str()) * 1e3 < budget_mb);  // the solver's estimate fits
+  CHECK(!named_mesh[4].str().empty());                       // the accuracy to expect there
+
+  // The named setting runs within the same budget, on the mesh the refusal counted.
+  const std::string named_report = scratch("fit_named.json");
+  const Run named = run_bemshape("thickness '" + mesh + "' --min-thickness 2 --max-edge " + edge +
+                                 budget + " --quiet --report '" + named_report + "'");
+  CAPTURE(named.err);
+  REQUIRE((named.exit_code == 0 || named.exit_code == 1));
+  const nlohmann::json named_json = read_json(named_report);
+  CHECK(named_json["mesh"]["memory_fit"].is_null());
+  CHECK(named_json["mesh"]["solver_faces"].get<long>() == named_faces);
+  CHECK(named_json["memory"]["peak_mb"].get<double>() < budget_mb);
+
+  // --fit-memory takes such a mesh itself, says so on stderr and in the report.
+  const std::string fitted_report = scratch("fit_memory.json");
+  const std::string fitted_map = scratch("fit_memory.csv");
+  const Run fitted = run_bemshape("thickness '" + mesh + "' --min-thickness 2 --fit-memory" +
+                                  budget + " --quiet --report '" + fitted_report + "' -o '" +
+                                  fitted_map + "'");
+  CAPTURE(fitted.err);
+  REQUIRE((fitted.exit_code == 0 || fitted.exit_code == 1));
+  CHECK_THAT(fitted.err, Catch::Contains("bemshape: --fit-memory: the solver mesh of "));
+  const nlohmann::json report = read_json(fitted_report);
+  const nlohmann::json& fit = report["mesh"]["memory_fit"];
+  CAPTURE(fit.dump());
+  REQUIRE(fit.is_object());
+  CHECK(fit["fitted"] == true);
+  CHECK(fit["max_edge"].get<double>() > 0.0);  // the edge taken (as the refusal named, up to
+                                                // what the process held when it predicted)
+  CHECK(fit["refused_faces"].get<long>() > fit["solver_faces"].get<long>());
+  CHECK(fit["refused_gb"].get<double>() > fit["budget_gb"].get<double>());
+  CHECK(report["mesh"]["solver_faces"] == fit["solver_faces"]);
+  CHECK(report["mesh"]["graded"].is_null());
+  CHECK(fs::file_size(fitted_map) > 0);  // the thickness map
+  // It finished inside the budget: the process's measured peak below what --max-memory allows.
+  CHECK(report["memory"]["peak_mb"].get<double>() < budget_mb);
 }
 
 TEST_CASE("the running account stops an assembly whose estimate fitted, exit 2, no output") {
