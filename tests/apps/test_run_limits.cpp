@@ -245,8 +245,8 @@ TEST_CASE("hmatrix --max-memory: a part whose estimate exceeds it is refused in 
 TEST_CASE(
     "thickness --max-memory below the default mesh's need: the refusal names a --max-edge that "
     "fits, and --fit-memory takes a mesh that fits itself, saying so") {
-  // The L-bracket (labelled part, 32 segments) at its default graded mesh: about 5800 solver
-  // faces, an H-matrix estimate of 0.16 GB. 50 MB (plus the sanitizers' overhead) is above
+  // The L-bracket (labelled part, 32 segments) at its default graded mesh: about 4400 solver
+  // faces, an H-matrix estimate of 0.13 GB. 50 MB (plus the sanitizers' overhead) is above
   // what the process holds (about 22 MB) and far below that estimate: the fitting mesh has a
   // few hundred faces, solved densely in seconds.
   const std::string mesh =
