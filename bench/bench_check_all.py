@@ -86,9 +86,11 @@ def main():
     parser.add_argument("--threads", type=int, default=2, help="threads of each serial run")
     parser.add_argument("--work", help="folder for the parts and reports (default: a "
                         "temporary folder, removed at the end)")
-    parser.add_argument("options", nargs="*", help="options for every part (after --)")
-    args = parser.parse_args()
-    options = args.options or DEFAULT_OPTIONS
+    # argparse cannot take a positional list after BUILD_DIR once "--" is given: split here.
+    argv = sys.argv[1:]
+    split = argv.index("--") if "--" in argv else len(argv)
+    args = parser.parse_args(argv[:split])
+    options = argv[split + 1:] or DEFAULT_OPTIONS
     bemshape = os.path.join(args.build, "apps", "bemshape")
     work = args.work or tempfile.mkdtemp(prefix="bench_check_all_")
     os.makedirs(work, exist_ok=True)
