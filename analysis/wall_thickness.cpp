@@ -61,6 +61,9 @@ struct FaceResult {
   double alignment = kNaN;
   Eigen::Vector3d point = Eigen::Vector3d::Constant(kNaN);
   int evaluations = 0;
+  /// The search stopped because it ran along the wall (no zero found: an end face, a hole's
+  /// wall), not because it left the solid or went past the part.
+  bool ran_along = false;
 };
 
 class MidSurfaceSearch {
@@ -124,7 +127,11 @@ class MidSurfaceSearch {
                                   std::abs(tensor.eigenvectors.col(2).dot(n)) < kAlongWallCosine;
         const double wall =
             features::mid_surface_thickness(lambda, parameters_.h0, parameters_.a);
-        if (across_other || next > kAlongWallDepthRatio * wall || tau >= reach_) return result;
+        if (across_other || next > kAlongWallDepthRatio * wall) {
+          result.ran_along = true;
+          return result;
+        }
+        if (tau >= reach_) return result;
         next = std::min(next, reach_);
       }
       tau = next;
@@ -187,6 +194,7 @@ WallThickness wall_thickness(const geometry::SurfaceMesh& mesh,
   result.mid_thickness.setConstant(nf, kNaN);
   result.rim_indicator.setConstant(nf, kNaN);
   result.alignment.setConstant(nf, kNaN);
+  std::vector<char> ran_along(static_cast<std::size_t>(nf), 0);
   std::atomic<Eigen::Index> done{0};
   std::uint64_t evaluations = 0;
 #pragma omp parallel reduction(+ : evaluations)
@@ -203,6 +211,7 @@ WallThickness wall_thickness(const geometry::SurfaceMesh& mesh,
       const double slope0 = solution.q.row(f).dot(n.transpose());
       const FaceResult face = search(x, n, s0.dot(n), slope0, workspace, counts);
       evaluations += static_cast<std::uint64_t>(face.evaluations);
+      ran_along[static_cast<std::size_t>(f)] = face.ran_along;
       if (face.found) {
         result.depth(f) = face.depth;
         result.mid_point.row(f) = face.point.transpose();
@@ -245,7 +254,8 @@ WallThickness wall_thickness(const geometry::SurfaceMesh& mesh,
   result.filled_faces = (!result.thickness.array().isFinite()).count();
   for (Eigen::Index f = 0; f < nf; ++f) {
     if (std::isfinite(result.thickness(f))) continue;
-    Fallback kind = Fallback::no_mid_surface;
+    Fallback kind =
+        ran_along[static_cast<std::size_t>(f)] ? Fallback::along_wall : Fallback::no_mid_surface;
     if (std::isfinite(result.depth(f))) {
       if (features::along_wall(result.mid_thickness(f), 2.0 * result.depth(f)))
         kind = Fallback::along_wall;

@@ -53,7 +53,9 @@ inline constexpr double kDepthGrowth = 1.6;
 /// Why a face has no reading of its own and took its neighbours' (features/wall_thickness.hpp).
 enum class Fallback {
   no_mid_surface,    ///< the search left the solid or found no sign change of s·n
-  along_wall,        ///< the search ran along the wall (2τ0 > kAlongWallRatio·h_mid)
+  along_wall,        ///< the search ran along the wall: stopped as such before a zero (the
+                     ///< field's wall across another direction, or deeper than
+                     ///< kAlongWallRatio of it), or 2τ0 > kAlongWallRatio·h_mid
   oblique,           ///< the search crossed its wall obliquely (|n·e3| < kMinAlignment)
   rim_without_pair,  ///< near a rim (rim indicator above kRimFrom) and no opposite skin
                      ///< paired: a skin more than arccos(kOppositeCosine) from opposite

@@ -82,6 +82,26 @@ TEST_CASE("wall thickness: a square plate reads its thickness up to its rims and
     }
   }
   CHECK(wall.wall.filled_faces >= rim_faces);
+  // Counted by reason: the rims as along the wall (their searches stopped as such), so that a
+  // plain plate raises no warning (kFallbackWarningShare); every filled face counted once.
+  double rim_area = 0.0;
+  for (Eigen::Index f = 0; f < mesh.num_faces(); ++f)
+    if (std::abs(mesh.face_normals()(f, 2)) < 0.5) rim_area += mesh.face_areas()(f);
+  Eigen::Index counted = 0;
+  double unexpected = 0.0;
+  for (int k = 0; k < analysis::kFallbackKinds; ++k) {
+    counted += wall.wall.fallback[std::size_t(k)].faces;
+    if (analysis::Fallback(k) != analysis::Fallback::along_wall)
+      unexpected += wall.wall.fallback[std::size_t(k)].area;
+  }
+  const analysis::FallbackFaces& along =
+      wall.wall.fallback[std::size_t(analysis::Fallback::along_wall)];
+  CAPTURE(rim_area, along.area, unexpected);
+  CHECK(counted == wall.wall.filled_faces);
+  CHECK(along.area >= 0.9 * rim_area);
+  CHECK(unexpected < analysis::kFallbackWarningShare * mesh.face_areas().sum());
+  CHECK(along.box.min.x() == Approx(0.0).margin(0.5));
+  CHECK(along.box.max.x() == Approx(12.0).margin(0.5));
 
   // The sphere at the surface reads thinner within half a wall of a rim (no sphere of the
   // wall's diameter fits there). The exact edges follow it there, and a wall's width from
