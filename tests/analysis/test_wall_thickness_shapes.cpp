@@ -140,6 +140,16 @@ TEST_CASE("wall thickness: the legs of an L and a T read their wall next to the 
   t << 0, 0, 24, 0, 24, 2, 13, 2, 13, 14, 11, 14, 11, 2, 0, 2;
   const analysis::ThicknessResult tr = prism_reading(t);
   CHECK(pairs_with_faces_off_their_wall(lr.wall) == 0);
+  // The L's outer skins over the junction: the mid-surface point there is in the junction,
+  // whose inscribed sphere h_mid reads; the skins across the wall read the leg's wall
+  // (features/wall_thickness.hpp, kJunctionRatio).
+  const SkinScore corner = score_prism(lr, [&](const Eigen::Vector3d& c, const Eigen::Vector3d& n) {
+    const bool outer = (n.y() < -0.9 && c.x() < 2.0) || (n.x() < -0.9 && c.y() < 2.0);
+    return outer ? kWall : kNaN;
+  });
+  INFO("the L's outer corner: " << corner.faces << " faces, worst " << corner.worst);
+  CHECK(corner.faces > 10);
+  CHECK(corner.worst < 0.05);
   CHECK(pairs_with_faces_off_their_wall(tr.wall) == 0);
   for (const double from : {0.5, 1.0, 2.0}) {
     const SkinScore ls = score_prism(lr, [&](const Eigen::Vector3d& c, const Eigen::Vector3d& n) {
