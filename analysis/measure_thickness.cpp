@@ -1,6 +1,7 @@
 #include "analysis/measure_thickness.hpp"
 
 #include <cmath>
+#include <limits>
 #include <utility>
 
 #include "core/cancellation.hpp"
@@ -12,6 +13,27 @@
 
 namespace bemshape::analysis {
 namespace {
+
+/// Whether any face of `mesh` with positive area reads below `unmeasurable_from` (the rule of
+/// thickness_statistics).
+bool any_measurable(const geometry::SurfaceMesh& mesh, const Eigen::VectorXd& thickness,
+                    double unmeasurable_from) {
+  for (Eigen::Index f = 0; f < mesh.num_faces(); ++f)
+    if (thickness(f) < unmeasurable_from && mesh.face_areas()(f) > 0.0)
+      return true;
+  return false;
+}
+
+/// The statistics of a surface on which nothing is measurable: NaN figures, all of its area
+/// unmeasurable.
+ThicknessStatistics unmeasurable_statistics(const geometry::SurfaceMesh& mesh) {
+  constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+  ThicknessStatistics stats;
+  stats.minimum = stats.maximum = stats.mean = stats.median = stats.p05 = stats.p95 = nan;
+  stats.min_location = Eigen::Vector3d::Constant(nan);
+  stats.unmeasurable_area = mesh.area();
+  return stats;
+}
 
 /// Drops regions smaller than `min_area`.
 template <class Region>
@@ -73,23 +95,31 @@ ThicknessResult measure(ThicknessResult result, const ThicknessOptions& given,
   result.thickness = result.solver_features.face.col(result.column);
   const auto regions_start = StageTimes::Clock::now();
   const double unmeasurable_from = features::kMaxThicknessFactor * h0;
-  result.statistics = thickness_statistics(solver_mesh, result.thickness, unmeasurable_from);
+  result.min_region_area = speck_area(options.min_region_area, h0, solver_mesh.area());
   result.histogram = area_histogram(result.thickness, solver_mesh.face_areas(), kHistogramBins,
                                     unmeasurable_from);
-  result.min_region_area = options.min_region_area.value_or(kSpeckArea * h0 * h0);
-  if (options.min_thickness) {
-    result.regions =
-        thin_regions(solver_mesh, result.thickness, *options.min_thickness, result.wall.partner);
-    drop_small(result.regions, result.min_region_area);
-  }
-  if (options.max_thickness) {
-    result.thick_regions =
-        thick_regions(solver_mesh, result.thickness, *options.max_thickness, unmeasurable_from,
-                      result.wall.partner);
-    drop_small(result.thick_regions, result.min_region_area);
-    if (result.wall.mid_point.rows() == solver_mesh.num_faces())
-      for (ThickRegion& r : result.thick_regions)
-        r.skeleton_point = result.wall.mid_point.row(r.extreme_face).transpose();
+  if (options.unmeasurable_fails_check && options.min_thickness &&
+      !any_measurable(solver_mesh, result.thickness, unmeasurable_from)) {
+    result.statistics = unmeasurable_statistics(solver_mesh);
+    result.check.speck_area = result.min_region_area;
+    result.check.pass = false;
+    result.check.unmeasurable = true;
+  } else {
+    result.statistics = thickness_statistics(solver_mesh, result.thickness, unmeasurable_from);
+    if (options.min_thickness) {
+      result.regions = thin_regions(solver_mesh, result.thickness, *options.min_thickness,
+                                    result.wall.partner);
+      result.check = thin_check(result.regions, result.min_region_area);
+    }
+    if (options.max_thickness) {
+      result.thick_regions =
+          thick_regions(solver_mesh, result.thickness, *options.max_thickness,
+                        unmeasurable_from, result.wall.partner);
+      drop_small(result.thick_regions, result.min_region_area);
+      if (result.wall.mid_point.rows() == solver_mesh.num_faces())
+        for (ThickRegion& r : result.thick_regions)
+          r.skeleton_point = result.wall.mid_point.row(r.extreme_face).transpose();
+    }
   }
   result.clamped_faces = (result.thickness.array() == 0.0).count();
   result.times.add("regions", std::chrono::duration<double>(StageTimes::Clock::now() -

@@ -54,10 +54,6 @@ enum class EdgeMode {
 /// "wall" or "exact"; throws InputError naming the choices.
 EdgeMode edge_mode(const std::string& name);
 
-/// Default smallest region, in units of h0²: a quarter of a square of side h0, below any
-/// feature a part is designed with at that h0 and above the few solver faces where three
-/// walls meet and the reading dips (docs/theory.md, "Wall thickness").
-inline constexpr double kSpeckArea = 0.25;
 /// Bins of the thickness's area histogram at most.
 inline constexpr int kHistogramBins = 12;
 
@@ -74,9 +70,18 @@ struct ThicknessOptions {
   /// Thick regions [model units], > 0: every edge-connected set of measurable solver faces
   /// thicker than it is a thick region. Empty: none.
   std::optional<double> max_thickness;
-  /// Thin and thick regions smaller than this area [model units²] are dropped (specks of a
-  /// few faces where three walls meet); 0 keeps all. Empty: kSpeckArea·h0².
+  /// The speck area [model units²]: thin regions smaller than it are set aside from the list
+  /// as specks (the verdict still counts them: ThinCheck), thick regions smaller than it are
+  /// dropped; 0 keeps all. Empty: kSpeckArea·h0². Never more than kSpeckPartFraction of the
+  /// part's area (speck_area).
   std::optional<double> min_region_area;
+  /// With min_thickness: when no face is measurable at h0 the check fails
+  /// (ThinCheck::unmeasurable) instead of the run refusing with an InputError. The front ends
+  /// set it when the units check finds h0 or the limit implausible for the part (the lengths
+  /// were meant in another unit, and a part read in the wrong unit must not come out of a
+  /// check without a FAIL: docs/usage.md, "Units check"). The statistics are then NaN with
+  /// every face's area unmeasurable.
+  bool unmeasurable_fails_check = false;
   /// Also carry the features over to the input mesh (ThicknessResult::input_features;
   /// costs closest-point queries of both meshes).
   bool map_to_input = true;
@@ -103,9 +108,10 @@ struct ThicknessResult {
   WallThickness wall;
   Eigen::VectorXd thickness;        ///< #F of the solver mesh: the selected measure per face
   ThicknessStatistics statistics;   ///< of `thickness` over the solver faces
-  std::vector<ThinRegion> regions;  ///< below min_thickness, most severe first
+  std::vector<ThinRegion> regions;  ///< below min_thickness, most severe first, specks aside
+  ThinCheck check;                  ///< the verdict and the specks (min_thickness only)
   std::vector<ThickRegion> thick_regions;  ///< above max_thickness, thickest first
-  double min_region_area = 0.0;     ///< the area below which regions were dropped
+  double min_region_area = 0.0;     ///< the speck area used (speck_area)
   AreaHistogram histogram;          ///< area per thickness range, at most kHistogramBins
   /// defect_faces[f] = 1 for the solver faces within h0 of a region where the input crosses
   /// itself and was measured as given (input.report.defects, geometry::faces_near_defects);

@@ -151,4 +151,26 @@ std::vector<ThickRegion> thick_regions(const geometry::SurfaceMesh& mesh,
       &ThickRegion::max_location);
 }
 
+double speck_area(std::optional<double> requested, double h0, double part_area) {
+  return std::min(requested.value_or(kSpeckArea * h0 * h0), kSpeckPartFraction * part_area);
+}
+
+ThinCheck thin_check(std::vector<ThinRegion>& regions, double speck_area) {
+  ThinCheck check;
+  check.speck_area = speck_area;
+  std::vector<ThinRegion> listed;
+  for (ThinRegion& r : regions) {
+    check.thin_area += r.area;
+    if (r.area < speck_area) {
+      check.speck_total += r.area;
+      check.specks.push_back(std::move(r));
+    } else {
+      listed.push_back(std::move(r));
+    }
+  }
+  regions = std::move(listed);
+  check.pass = check.thin_area == 0.0 || check.thin_area < speck_area;
+  return check;
+}
+
 }  // namespace bemshape::analysis

@@ -13,9 +13,13 @@
 //
 // A thin region is a set of faces with thickness < threshold connected through shared
 // edges. Regions are sorted by severity: thinnest minimum first, larger area first on ties.
+//
+// The check (thin_check): every face below the threshold counts towards the verdict; regions
+// smaller than the speck area are set aside from the list of regions, never from the verdict.
 
 #include <cstddef>
 #include <limits>
+#include <optional>
 #include <vector>
 
 #include <Eigen/Core>
@@ -85,5 +89,43 @@ std::vector<ThickRegion> thick_regions(const geometry::SurfaceMesh& mesh,
                                        const Eigen::VectorXd& thickness, double threshold,
                                        double unmeasurable_from,
                                        const Eigen::VectorXi& across = {});
+
+/// Default speck area, in units of h0²: a quarter of a square of side h0, below any feature a
+/// part is designed with at that h0 and above the few solver faces where three walls meet and
+/// the reading dips (docs/theory.md, "Wall thickness").
+inline constexpr double kSpeckArea = 0.25;
+
+/// The speck area never exceeds this fraction of the part's surface area: h0²/4 means a speck
+/// only while h0 is small against the part (area ≥ 250·h0²). When h0 is comparable to the part
+/// — a small part, or a limit given in millimetres for a file in metres — h0²/4 can exceed
+/// the whole surface, and a thin part would be set aside whole (docs/usage.md, "The check").
+inline constexpr double kSpeckPartFraction = 1e-3;
+
+/// The speck area [model units²]: `requested` (≥ 0; --min-region-area) or kSpeckArea·h0²,
+/// and never more than kSpeckPartFraction·part_area (part_area: the surface's area).
+double speck_area(std::optional<double> requested, double h0, double part_area);
+
+/// The verdict of a minimum-wall-thickness check and the specks it set aside from the list of
+/// regions (docs/usage.md, "The check"). Every face thinner than the threshold counts: the
+/// check fails when their area reaches the speck area, and whenever any face is thin with a
+/// speck area of 0. A PASS therefore means that the faces below the limit cover less than the
+/// speck area in all, at most kSpeckPartFraction of the part.
+struct ThinCheck {
+  double speck_area = 0.0;  ///< regions smaller than it are specks [model units²]
+  double thin_area = 0.0;   ///< area of every face thinner than the threshold [model units²]
+  double speck_total = 0.0;  ///< area of the specks [model units²]
+  /// Regions smaller than speck_area, most severe first: not among the regions listed, but
+  /// reported with them (where, how thin, how large).
+  std::vector<ThinRegion> specks;
+  bool pass = true;  ///< thin_area = 0, or 0 < thin_area < speck_area
+  /// No face was measurable at h0 and the run was asked to fail the check rather than refuse
+  /// (ThicknessOptions::unmeasurable_fails_check): pass is false, thin_area 0.
+  bool unmeasurable = false;
+};
+
+/// The check of `regions` (every thin region of thin_regions: together they hold every thin
+/// face) against `speck_area`: moves the regions smaller than speck_area out of `regions` into
+/// the result's specks, keeping both in order of severity.
+ThinCheck thin_check(std::vector<ThinRegion>& regions, double speck_area);
 
 }  // namespace bemshape::analysis

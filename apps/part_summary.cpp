@@ -23,9 +23,6 @@ nlohmann::ordered_json part_summary_from_report(const std::string& part,
                                                 const std::string& report_path, bool resumed) {
   const bool pass = field(report, report_path, "check", "pass").get<bool>();
   const nlohmann::json& regions = field(report, report_path, "check", "regions");
-  double thin_area = 0.0;
-  for (const nlohmann::json& region : regions)
-    thin_area += region.at("area").get<double>();
   return {{"part", part},
           {"verdict", pass ? kVerdictPass : kVerdictThin},
           {"exit_code", pass ? kExitSuccess : kExitCheckFailed},
@@ -33,8 +30,9 @@ nlohmann::ordered_json part_summary_from_report(const std::string& part,
           {"min_thickness", field(report, report_path, "thickness", "min")},
           {"min_location", field(report, report_path, "thickness", "min_location")},
           {"regions", regions.size()},
-          {"thin_area", thin_area},
+          {"thin_area", field(report, report_path, "check", "thin_area")},
           {"h0", field(report, report_path, "parameters", "h0")},
+          {"units_warning", report.value("units_warning", nlohmann::json(nullptr))},
           {"seconds", field(report, report_path, "timing", "total")},
           {"peak_mb", field(report, report_path, "memory", "peak_mb")},
           {"error", nullptr},
@@ -55,6 +53,7 @@ nlohmann::ordered_json part_summary_without_report(const std::string& part, cons
           {"regions", nullptr},
           {"thin_area", nullptr},
           {"h0", nullptr},
+          {"units_warning", nullptr},
           {"seconds", seconds},
           {"peak_mb", peak_mb ? nlohmann::ordered_json(*peak_mb) : nlohmann::ordered_json(nullptr)},
           {"error", error},

@@ -12,8 +12,10 @@
 //   exit_code     what `bemshape thickness` exits with for the part (0, 1, 2, 3, 128 + signal)
 //   threshold     --min-thickness
 //   min_thickness, min_location   the thinnest wall and where (null without a verdict)
-//   regions, thin_area            the number of thin regions and their total area
+//   regions       the number of thin regions listed (specks set aside: not counted)
+//   thin_area     the area of every face thinner than threshold, specks included
 //   h0            the characteristic length used
+//   units_warning the part's units warning (apps/report/units_check.hpp), or null
 //   seconds       the part's wall time [s];  peak_mb  its peak resident memory [MB]
 //   error         the part's error message, null with a verdict
 //   report        the part's JSON report, null without one;  resumed  true if --resume

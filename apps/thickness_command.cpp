@@ -21,6 +21,7 @@
 #include "apps/output/vtp_writer.hpp"
 #include "apps/progress_display.hpp"
 #include "apps/report/thickness_report_json.hpp"
+#include "apps/report/units_check.hpp"
 #include "apps/report_text.hpp"
 #include "apps/run_limits.hpp"
 #include "apps/solver_mesh_options.hpp"
@@ -56,6 +57,7 @@ struct ThicknessOptions {
   std::optional<double> min_thickness;
   std::optional<double> max_thickness;
   std::optional<double> min_region_area;
+  std::string units_check = "on";
   std::optional<double> max_edge;
   std::optional<double> sharp_angle;  // empty: the solver mesh rule's default
   std::string output;
@@ -213,6 +215,7 @@ std::vector<std::pair<std::string, std::string>> html_parameters(const Thickness
           {"edges", options.edges},
           {"min thickness",
            options.min_thickness ? number_text(*options.min_thickness, 6) : "none"},
+          {"speck area", number_text(result.min_region_area, 6)},
           {"max edge", number_text(run.max_edge, 6) + " (" + run.max_edge_rule + ")"},
           {"solver faces", std::to_string(run.solver_mesh.num_faces())},
           {"input faces", std::to_string(result.input.report.faces)},
@@ -223,12 +226,74 @@ std::vector<std::pair<std::string, std::string>> html_parameters(const Thickness
 /// Regions listed in the printed report; the JSON report lists all of them.
 constexpr std::size_t kPrintedRegions = 10;
 
+/// Up to kPrintedRegions thin regions (or specks), one line each.
+void print_thin_regions(std::ostream& out, const std::vector<ThinRegion>& regions) {
+  for (std::size_t i = 0; i < std::min(regions.size(), kPrintedRegions); ++i) {
+    const ThinRegion& r = regions[i];
+    out << "    " << i + 1 << ". min " << number_text(r.minimum, 6) << " at "
+        << point_text(r.min_location) << ", area " << number_text(r.area, 6) << ", centroid "
+        << point_text(r.centroid) << '\n';
+  }
+  if (regions.size() > kPrintedRegions)
+    out << "    ... " << regions.size() - kPrintedRegions << " more in the JSON report (--report)\n";
+}
+
+/// "N specks, total area A, thinnest M at (x, y, z)".
+std::string specks_text(const analysis::ThinCheck& check) {
+  const std::size_t n = check.specks.size();
+  return std::to_string(n) + " speck" + (n == 1 ? "" : "s") + ", total area " +
+         number_text(check.speck_total, 6) + ", thinnest " +
+         number_text(check.specks.front().minimum, 6) + " at " +
+         point_text(check.specks.front().min_location);
+}
+
+/// The check's lines of the printed report (docs/usage.md, "The check").
+void print_check(std::ostream& out, double threshold, const ThicknessResult& result) {
+  const analysis::ThinCheck& check = result.check;
+  const std::string limit = number_text(threshold, 6);
+  const std::string speck_area = number_text(check.speck_area, 6);
+  if (check.pass) {
+    out << "  check        PASS: no wall thinner than " << limit;
+    if (!check.specks.empty())
+      out << " over the speck area " << speck_area << "; set aside: " << specks_text(check);
+    out << '\n';
+    return;
+  }
+  if (!result.regions.empty()) {
+    double area = 0.0;
+    for (const ThinRegion& r : result.regions)
+      area += r.area;
+    out << "  check        FAIL: " << result.regions.size() << " region"
+        << (result.regions.size() == 1 ? "" : "s") << " thinner than " << limit
+        << ", total area " << number_text(area, 6) << '\n';
+    print_thin_regions(out, result.regions);
+    if (!check.specks.empty())
+      out << "  specks       " << specks_text(check) << ", each under the speck area "
+          << speck_area << " (in the JSON report)\n";
+    return;
+  }
+  if (check.unmeasurable) {
+    out << "  check        FAIL: no face has a measurable thickness at this h0, and the units "
+           "check above says the lengths given do not fit the part's size\n";
+    return;
+  }
+  out << "  check        FAIL: thinner than " << limit << " over area "
+      << number_text(check.thin_area, 6) << ", at least the speck area " << speck_area
+      << ", in " << check.specks.size() << " speck" << (check.specks.size() == 1 ? "" : "s")
+      << " each smaller than it\n";
+  print_thin_regions(out, check.specks);
+}
+
 void print_report(std::ostream& out, const ThicknessOptions& options, double h0,
-                  const ThicknessResult& result, const StageTimes& times, double peak_mb) {
+                  const ThicknessResult& result, const StageTimes& times, double peak_mb,
+                  const UnitsCheck& units) {
   const analysis::BoundarySolve& run = result.boundary;
   const ThicknessStatistics& s = result.statistics;
   const auto& sr = run.solution.report;
-  out << "bemshape thickness: " << options.input << "  (lengths in the input file's units)\n"
+  out << "bemshape thickness: " << options.input << "  (lengths in the input file's units)\n";
+  if (units.warning)
+    out << "  warning      " << *units.warning << '\n';
+  out
       << "  parameters   h0 " << number_text(h0, 6) << " (" << result.h0_rule << "), a "
       << number_text(options.a, 6) << ", measure " << options.measure << " ("
       << result.measure_column << "), edges " << options.edges << ", max edge "
@@ -237,12 +302,16 @@ void print_report(std::ostream& out, const ThicknessOptions& options, double h0,
       << run.solver_mesh.num_faces() << " solver faces (longest edge "
       << number_text(run.solver_mesh.max_edge_length(), 6) << ")\n"
       << "  solver       " << sr.method << ", " << sr.unknowns << " unknowns, residual "
-      << number_text(sr.residual, 6) << '\n'
-      << "  thickness    min " << number_text(s.minimum, 6) << " at " << point_text(s.min_location)
-      << '\n'
-      << "               p05 " << number_text(s.p05, 6) << ", median " << number_text(s.median, 6)
-      << ", mean " << number_text(s.mean, 6) << ", p95 " << number_text(s.p95, 6) << ", max "
-      << number_text(s.maximum, 6) << '\n';
+      << number_text(sr.residual, 6) << '\n';
+  if (s.measured_area > 0.0)
+    out << "  thickness    min " << number_text(s.minimum, 6) << " at " << point_text(s.min_location)
+        << '\n'
+        << "               p05 " << number_text(s.p05, 6) << ", median " << number_text(s.median, 6)
+        << ", mean " << number_text(s.mean, 6) << ", p95 " << number_text(s.p95, 6) << ", max "
+        << number_text(s.maximum, 6) << '\n';
+  else
+    out << "  thickness    not measurable on any face at this h0 (no opposite wall within its "
+           "reach)\n";
   out << "  histogram    area per thickness range\n"
       << format_area_histogram(result.histogram, 30, "    ");
   if (s.unmeasurable_area > 0.0)
@@ -296,28 +365,9 @@ void print_report(std::ostream& out, const ThicknessOptions& options, double h0,
           << "               where)\n";
   }
   if (options.min_thickness) {
-    const double threshold = *options.min_thickness;
     if (!defects.empty())
       out << "  check        (rests on the surface as given around the defect regions above)\n";
-    if (result.regions.empty()) {
-      out << "  check        PASS: no wall thinner than " << number_text(threshold, 6) << '\n';
-    } else {
-      double area = 0.0;
-      for (const ThinRegion& r : result.regions)
-        area += r.area;
-      out << "  check        FAIL: " << result.regions.size() << " region"
-          << (result.regions.size() == 1 ? "" : "s") << " thinner than "
-          << number_text(threshold, 6) << ", total area " << number_text(area, 6) << '\n';
-      for (std::size_t i = 0; i < std::min(result.regions.size(), kPrintedRegions); ++i) {
-        const ThinRegion& r = result.regions[i];
-        out << "    " << i + 1 << ". min " << number_text(r.minimum, 6) << " at "
-            << point_text(r.min_location) << ", area " << number_text(r.area, 6) << ", centroid "
-            << point_text(r.centroid) << '\n';
-      }
-      if (result.regions.size() > kPrintedRegions)
-        out << "    ... " << result.regions.size() - kPrintedRegions
-            << " more in the JSON report (--report)\n";
-    }
+    print_check(out, *options.min_thickness, result);
   }
   if (options.max_thickness) {
     out << "  thick        " << result.thick_regions.size() << " region"
@@ -371,6 +421,9 @@ void run_thickness(const ThicknessOptions& options, int& exit_code) {
   require_writable_folder(options.html_path, "--html");
   if (options.threads < 0)
     throw InputError("--threads must be positive, got " + std::to_string(options.threads));
+  if (options.units_check != "on" && options.units_check != "off")
+    throw InputError("--units-check must be 'on' (warn when --h0 or --min-thickness cannot be "
+                     "meant in the file's units) or 'off', got '" + options.units_check + "'");
   if (options.threads > 0)
     omp_set_num_threads(options.threads);
 
@@ -386,8 +439,29 @@ void run_thickness(const ThicknessOptions& options, int& exit_code) {
   job.max_thickness = options.max_thickness;
   job.map_to_input = format != OutputFormat::none;
   job.min_region_area = options.min_region_area;
-  const ThicknessResult result =
-      analysis::measure_thickness(fs::path(options.input), job, display.callback());
+  // The units check needs only the part's box, area and volume, and the lengths given: it
+  // runs on the prepared input before the solve, and its warning goes out at once.
+  analysis::validate(job);
+  const geometry::PreparedMesh input = times.time("read", [&] {
+    return geometry::prepare_mesh_file(fs::path(options.input), {}, display.callback());
+  });
+  UnitsCheck units;
+  units.enabled = options.units_check == "on";
+  if (units.enabled) {
+    std::vector<GivenLength> lengths;
+    if (options.min_thickness)
+      lengths.push_back({"--min-thickness", *options.min_thickness, true});
+    if (options.h0)
+      lengths.push_back({"--h0", *options.h0, false});
+    units.warning = units_warning(part_size(input.mesh, input.report.volume, input.report.area),
+                                  lengths, "--units-check off");
+  }
+  if (units.warning)
+    std::cerr << "bemshape: warning: " << options.input << ": " << *units.warning << '\n';
+  // A part in the wrong unit can read unmeasurable everywhere at h0: the check then fails
+  // rather than the run refusing (docs/usage.md, "Units check").
+  job.unmeasurable_fails_check = units.warning.has_value();
+  const ThicknessResult result = analysis::measure_thickness(input, job, display.callback());
   const double h0 = result.h0;
   if (const std::string note = memory_fit_note(result.boundary); !note.empty())
     std::cerr << "bemshape: " << note << '\n';  // even with --quiet: the accuracy changed
@@ -416,10 +490,13 @@ void run_thickness(const ThicknessOptions& options, int& exit_code) {
                               result.measure_column, &result.boundary.solver_mesh,
                               result.solver_features.vertex.col(result.column),
                               result.thickness, features::kMaxThicknessFactor * h0,
-                              result.statistics, result.regions, options.min_thickness,
-                              html_parameters(options, h0, result), {}, {}};
+                              result.statistics, result.regions, result.check,
+                              options.min_thickness, html_parameters(options, h0, result),
+                              {}, {}, {}};
       html.defects = result.input.report.defects;
       html.defect_faces = result.defect_faces;
+      if (units.warning)
+        html.warnings.push_back(*units.warning);
       output::write_html_report(options.html_path, thickness_html_report(html));
     });
   display.finish();
@@ -441,13 +518,13 @@ void run_thickness(const ThicknessOptions& options, int& exit_code) {
                                       : std::optional<std::string>(options.solver_output)};
     output::write_file_atomically(
         options.report_path,
-        thickness_report_json(job, result, names, times, {omp_get_max_threads(), peak_mb})
+        thickness_report_json(job, result, names, times, {omp_get_max_threads(), peak_mb}, units)
                 .dump(2) +
             '\n');
   }
-  print_report(std::cout, options, h0, result, times, peak_mb);
+  print_report(std::cout, options, h0, result, times, peak_mb, units);
   std::cout.flush();
-  exit_code = options.min_thickness && !result.regions.empty() ? kExitCheckFailed : kExitSuccess;
+  exit_code = options.min_thickness && !result.check.pass ? kExitCheckFailed : kExitSuccess;
 }
 
 }  // namespace
@@ -479,13 +556,20 @@ void register_thickness_command(CLI::App& app, int& exit_code) {
                   "inscribed sphere at the point, so convex edges read thinner (measure wall)")
       ->capture_default_str();
   cmd->add_option("--min-thickness", options->min_thickness,
-                  "Check: fail (exit 1) if any wall is thinner than this; lists the thin regions");
+                  "Check: fail (exit 1) if the surface reads thinner than this over the speck "
+                  "area or more (in all); lists the thin regions and the specks");
   cmd->add_option("--max-thickness", options->max_thickness,
                   "List the thick regions (hot spots for moulding and casting): walls thicker "
                   "than this, located at their thickest point and its wall's middle");
   cmd->add_option("--min-region-area", options->min_region_area,
-                  "Drop thin and thick regions smaller than this area, in the file's units "
-                  "squared (default: h0^2/4)");
+                  "The speck area, in the file's units squared (default: h0^2/4; never more "
+                  "than 0.1 % of the part's area): smaller thin regions are listed apart as "
+                  "specks, smaller thick regions are dropped; the check fails when the thin "
+                  "area in all reaches it");
+  cmd->add_option("--units-check", options->units_check,
+                  "on: warn in one line when --h0 or --min-thickness cannot be meant in the "
+                  "file's units (larger than the part, or far from its walls); off: no warning")
+      ->capture_default_str();
   add_solver_mesh_options(*cmd, options->max_edge, options->sharp_angle);
   add_solver_choice_options(*cmd, options->solver);
   cmd->add_option("-o,--output", options->output,

@@ -20,10 +20,10 @@ Eigen::VectorXd without_unmeasurable(const Eigen::VectorXd& values, double unmea
 }
 
 output::HtmlRegion html_region(const geometry::SurfaceMesh& mesh,
-                               const analysis::ThinRegion& region,
+                               const analysis::ThinRegion& region, const char* kind,
                                int rank) {
   output::HtmlRegion r;
-  r.kind = "thin";
+  r.kind = kind;
   r.rank = rank;
   r.area = region.area;
   r.extreme = region.minimum;
@@ -61,7 +61,12 @@ output::HtmlReport thickness_html_report(const ThicknessHtmlInput& input) {
   report.colour_maximum = input.statistics.maximum;
   report.min_thickness = input.min_thickness;
   for (std::size_t i = 0; i < input.thin_regions.size(); ++i)
-    report.regions.push_back(html_region(mesh, input.thin_regions[i], static_cast<int>(i) + 1));
+    report.regions.push_back(
+        html_region(mesh, input.thin_regions[i], "thin", static_cast<int>(i) + 1));
+  for (std::size_t i = 0; i < input.check.specks.size(); ++i)
+    report.regions.push_back(
+        html_region(mesh, input.check.specks[i], "speck", static_cast<int>(i) + 1));
+  report.warnings = input.warnings;
   const analysis::AreaHistogram h = analysis::area_histogram(
       input.face_thickness, mesh.face_areas(), kHtmlHistogramBins, input.unmeasurable_from);
   report.histogram = {h.edges, h.area, h.other_area};
@@ -87,11 +92,24 @@ output::HtmlReport thickness_html_report(const ThicknessHtmlInput& input) {
     if (input.defect_faces[f] != 0)
       report.defect_faces.push_back(static_cast<int>(f));
   if (input.min_thickness) {
+    const analysis::ThinCheck& check = input.check;
     const std::string threshold = number_text(*input.min_thickness, 6);
-    if (input.thin_regions.empty()) {
+    const std::string speck_area = number_text(check.speck_area, 6);
+    const std::size_t specks = check.specks.size();
+    const std::string set_aside =
+        std::to_string(specks) + " speck" + (specks == 1 ? "" : "s") + " (each smaller than " +
+        speck_area + "), total area " + number_text(check.speck_total, 6);
+    if (check.unmeasurable) {
+      report.verdict = "FAIL";
+      report.verdict_text = "no face has a measurable thickness at this h0, and the lengths "
+                            "given do not fit the part's size (see the warning).";
+    } else if (check.pass) {
       report.verdict = "PASS";
-      report.verdict_text = "no wall thinner than " + threshold + ".";
-    } else {
+      report.verdict_text = "no wall thinner than " + threshold +
+                            (specks == 0 ? "" : " over the speck area " + speck_area +
+                                                    "; set aside: " + set_aside) +
+                            ".";
+    } else if (!input.thin_regions.empty()) {
       double area = 0.0;
       for (const analysis::ThinRegion& r : input.thin_regions)
         area += r.area;
@@ -100,7 +118,14 @@ output::HtmlReport thickness_html_report(const ThicknessHtmlInput& input) {
       report.verdict_text = std::to_string(n) + " region" + (n == 1 ? "" : "s") +
                             " thinner than " + threshold + ", total area " +
                             number_text(area, 6) + "; thinnest " +
-                            number_text(input.thin_regions.front().minimum, 6) + ".";
+                            number_text(input.thin_regions.front().minimum, 6) +
+                            (specks == 0 ? "" : "; besides, " + set_aside) + ".";
+    } else {
+      report.verdict = "FAIL";
+      report.verdict_text = "thinner than " + threshold + " over area " +
+                            number_text(check.thin_area, 6) + ", at least the speck area " +
+                            speck_area + ", in " + set_aside + "; thinnest " +
+                            number_text(check.specks.front().minimum, 6) + ".";
     }
   }
   return report;

@@ -13,6 +13,7 @@
 #include "analysis/input_mesh.hpp"
 #include "analysis/measure_thickness.hpp"
 #include "apps/report/thickness_report_json.hpp"
+#include "apps/report/units_check.hpp"
 #include "apps/solver_choice.hpp"
 #include "core/memory.hpp"
 #include "core/number_text.hpp"
@@ -75,7 +76,8 @@ py::dict thickness(const py::handle& V, const py::handle& F, std::optional<doubl
                    std::optional<double> sharp_angle, const std::string& solver,
                    const std::string& far_field, double tolerance, std::optional<int> threads,
                    std::optional<double> max_memory, bool fit_memory, py::object progress,
-                   const std::string& name) {
+                   const std::string& name, std::optional<double> min_region_area,
+                   bool units_check) {
   const Eigen::MatrixX3d vertices = positions_from_array(V, "V");
   const Eigen::MatrixX3i faces = indices_from_array(F, "F");
   analysis::ThicknessOptions job;
@@ -90,6 +92,7 @@ py::dict thickness(const py::handle& V, const py::handle& F, std::optional<doubl
     job.measure = analysis::thickness_measure(*measure);
   job.min_thickness = min_thickness;
   job.max_thickness = max_thickness;
+  job.min_region_area = min_region_area;
   job.map_to_input = false;  // mapped to the caller's own arrays below
   analysis::validate(job);
   const apps::ThicknessRunNames names{name, measure_name(job.measure), std::nullopt,
@@ -101,8 +104,25 @@ py::dict thickness(const py::handle& V, const py::handle& F, std::optional<doubl
     const geometry::PreparedMesh input = times.time("prepare", [&] {
       return analysis::prepare_triangles(vertices, faces, name, report_progress_to);
     });
+    apps::UnitsCheck units;
+    units.enabled = units_check;
+    if (units_check) {
+      std::vector<apps::GivenLength> lengths;
+      if (min_thickness)
+        lengths.push_back({"min_thickness", *min_thickness, true});
+      if (h0)
+        lengths.push_back({"h0", *h0, false});
+      const geometry::MeshReport& part = input.report;
+      units.warning = apps::units_warning(
+          apps::part_size(input.mesh, part.volume, part.area), lengths,
+          "units_check=False");
+    }
+    // A part in the wrong unit can read unmeasurable everywhere at h0: the check then fails
+    // rather than the call raising (docs/usage.md, "Units check").
+    analysis::ThicknessOptions checked = job;
+    checked.unmeasurable_fails_check = units.warning.has_value();
     Outcome o;
-    o.result = analysis::measure_thickness(input, job, report_progress_to);
+    o.result = analysis::measure_thickness(input, checked, report_progress_to);
     times.add(o.result.times);
     o.on_caller = times.time("map_back", [&] {
       report_progress(report_progress_to, "map to input mesh", 0.0);
@@ -110,7 +130,8 @@ py::dict thickness(const py::handle& V, const py::handle& F, std::optional<doubl
                                          geometry::SurfaceMesh(vertices, faces));
     });
     o.report = apps::thickness_report_json(
-        job, o.result, names, times, {run.threads(), double(peak_resident_bytes()) / 1e6});
+        checked, o.result, names, times, {run.threads(), double(peak_resident_bytes()) / 1e6},
+        units);
     return o;
   }));
 
@@ -139,7 +160,8 @@ py::dict thickness(const py::handle& V, const py::handle& F, std::optional<doubl
   out["statistics"] = report["thickness"];
   out["regions"] = regions;
   out["thick_regions"] = report["thick_regions"];
-  out["passed"] = min_thickness ? py::object(py::bool_(result.regions.empty())) : py::none();
+  out["passed"] = min_thickness ? py::object(py::bool_(result.check.pass)) : py::none();
+  out["units_warning"] = report["units_warning"];
   out["solver_mesh"] = on_solver;
   out["report"] = report;
   return out;
@@ -158,10 +180,11 @@ void register_thickness_function(py::module_& module) {
       py::arg("tolerance") = solver.tolerance, py::arg("threads") = py::none(),
       py::arg("max_memory") = py::none(), py::arg("fit_memory") = false,
       py::arg("progress") = py::none(), py::arg("name") = "numpy arrays",
+      py::arg("min_region_area") = py::none(), py::arg("units_check") = true,
       R"(thickness(V, F, *, h0=None, min_thickness=None, max_thickness=None, measure=None,
           a=0.2, max_edge=None, sharp_angle=None, solver="auto", far_field="auto",
           tolerance=1e-6, threads=None, max_memory=None, fit_memory=False, progress=None,
-          name="numpy arrays") -> dict
+          name="numpy arrays", min_region_area=None, units_check=True) -> dict
 
 The local wall thickness of the solid bounded by the triangles F (int (m, 3), 0-based) over
 the vertices V (float (n, 3)), as `bemshape thickness` computes it for a file. Lengths in
@@ -169,7 +192,12 @@ the units of V.
 
 h0: characteristic length, about the smallest wall of interest (default: min_thickness, else
     2·volume/area of the part).
-min_thickness: the check's threshold; every connected set of thinner faces is a region.
+min_thickness: the check's threshold: it fails when the faces thinner than it cover the speck
+    area or more in all; every connected set of thinner faces is a region, and regions smaller
+    than the speck area are set aside as specks (the report's check.specks).
+min_region_area: the speck area (default h0²/4, never more than 0.1 % of the part's area).
+units_check: warn (units_warning, and the report's) when h0 or min_thickness cannot be meant
+    in the units of V (larger than the part, or far from its walls).
 max_thickness: every connected set of thicker faces is a thick region (report's
     thick_regions).
 measure: "wall" (the default: the thickness of the wall a point belongs to, read at the
@@ -186,7 +214,8 @@ Returns a dict:
   measure: "wall", "h_p" or "h_f";  thick_regions: as the report's (None without
       max_thickness);  statistics: area-weighted min, max, mean, median, p05, p95, ...;
   regions: thin regions, most severe first (area, min, min_location, centroid,
-      solver_faces);  passed: the check's verdict (None without min_thickness);
+      solver_faces), specks aside;  passed: the check's verdict (None without
+      min_thickness);  units_warning: one line, or None;
   solver_mesh: {V, F, vertex, face} the refined mesh the statistics come from;
   report: the JSON report of `bemshape thickness --report`, as a dict.
 Raises ValueError for bad arrays or options and meshes that bound no solid, MemoryError

@@ -135,7 +135,8 @@ std::string metadata(const HtmlReport& r, const Eigen::Vector3d& origin) {
       {"verdict_text", r.verdict_text},
       {"defects", defects},
       {"defect_colour", {kDefectColour.r, kDefectColour.g, kDefectColour.b}},
-      {"defect_face_count", r.defect_faces.size()}};
+      {"defect_face_count", r.defect_faces.size()},
+      {"warnings", r.warnings}};
   std::string text = json.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
   std::string escaped;
   escaped.reserve(text.size());

@@ -36,7 +36,7 @@ namespace bemshape::output {
 /// A connected set of faces beyond a threshold: thinner than the minimum ("thin") or thicker
 /// than the maximum ("thick").
 struct HtmlRegion {
-  std::string kind = "thin";  ///< "thin" or "thick"
+  std::string kind = "thin";  ///< "thin", "thick" or "speck" (thin, smaller than the speck area)
   int rank = 1;               ///< 1 = most severe of its kind
   double area = 0.0;          ///< [units²]
   double extreme = 0.0;       ///< the thinnest value for "thin", the thickest for "thick" [units]
@@ -85,6 +85,7 @@ struct HtmlReport {
   /// itself.
   std::vector<HtmlDefect> defects;
   std::vector<int> defect_faces;
+  std::vector<std::string> warnings;  ///< one line each, shown under the verdict
 };
 
 /// Writes `report` to `path` atomically. Throws InputError on an I/O error, InternalError if

@@ -44,7 +44,8 @@ const char* edges_name(analysis::EdgeMode edges) {
 nlohmann::json thickness_report_json(const analysis::ThicknessOptions& options,
                                      const analysis::ThicknessResult& result,
                                      const ThicknessRunNames& names,
-                                     const analysis::StageTimes& times, const RunFigures& run) {
+                                     const analysis::StageTimes& times, const RunFigures& run,
+                                     const UnitsCheck& units) {
   const analysis::BoundarySolve& solve = result.boundary;
   const analysis::ThicknessStatistics& s = result.statistics;
   nlohmann::json parameters = {{"h0", result.h0},
@@ -58,6 +59,7 @@ nlohmann::json thickness_report_json(const analysis::ThicknessOptions& options,
                                {"max_edge", solve.max_edge},
                                {"max_edge_rule", solve.max_edge_rule},
                                {"min_thickness", nullptr},
+                               {"units_check", units.enabled},
                                {"threads", run.threads},
                                {"march", build_march()}};
   nlohmann::json check = nullptr;
@@ -66,9 +68,17 @@ nlohmann::json thickness_report_json(const analysis::ThicknessOptions& options,
     nlohmann::json regions = nlohmann::json::array();
     for (const analysis::ThinRegion& r : result.regions)
       regions.push_back(region_json(r));
+    nlohmann::json specks = nlohmann::json::array();
+    for (const analysis::ThinRegion& r : result.check.specks)
+      specks.push_back(region_json(r));
     check = {{"threshold", *options.min_thickness},
-             {"pass", result.regions.empty()},
-             {"regions", regions}};
+             {"pass", result.check.pass},
+             {"unmeasurable", result.check.unmeasurable},
+             {"regions", regions},
+             {"thin_area", result.check.thin_area},
+             {"speck_area", result.check.speck_area},
+             {"set_aside_area", result.check.speck_total},
+             {"specks", specks}};
   }
   nlohmann::json thick = nullptr;
   if (options.max_thickness) {
@@ -97,6 +107,7 @@ nlohmann::json thickness_report_json(const analysis::ThicknessOptions& options,
   report["output"] = optional_text(names.output);
   report["solver_output"] = optional_text(names.solver_output);
   report["parameters"] = parameters;
+  report["units_warning"] = units.warning ? nlohmann::json(*units.warning) : nullptr;
   report["mesh"] = mesh_json(result.input.report, solve);
   report["thickness"] = {{"measure", result.measure_column},
                          {"min", s.minimum},

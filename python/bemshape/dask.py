@@ -12,7 +12,7 @@ one record, the fields of a line of check-all's JSON-lines summary (apps/part_su
 
     part, verdict ("pass", "thin", "error", "timeout"), exit_code (what `bemshape thickness`
     exits with for that part), threshold, min_thickness, min_location, regions, thin_area,
-    h0, seconds, peak_mb, error, report (the thickness report as a dict with
+    h0, units_warning, seconds, peak_mb, error, report (the thickness report as a dict with
     keep_reports=True, else None), resumed (always False here).
 
 A part's own problem (unreadable file, a mesh that bounds no solid, memory refused, no
@@ -77,6 +77,7 @@ def _record_without_report(part, verdict, error, exit_code, threshold, seconds, 
         "regions": None,
         "thin_area": None,
         "h0": None,
+        "units_warning": None,
         "seconds": seconds,
         "peak_mb": peak_mb,
         "error": error,
@@ -97,8 +98,9 @@ def summary_record(part, report, keep_report=False):
         "min_thickness": report["thickness"]["min"],
         "min_location": list(report["thickness"]["min_location"]),
         "regions": len(check["regions"]),
-        "thin_area": sum(region["area"] for region in check["regions"]),
+        "thin_area": check["thin_area"],
         "h0": report["parameters"]["h0"],
+        "units_warning": report["units_warning"],
         "seconds": report["timing"]["total"],
         "peak_mb": report["memory"]["peak_mb"],
         "error": None,

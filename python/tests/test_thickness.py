@@ -169,3 +169,24 @@ def test_h0_defaults_to_twice_volume_over_area():
     assert report["parameters"]["h0"] == pytest.approx(
         2 * report["mesh"]["volume"] / report["mesh"]["area"], rel=1e-12)
     assert report["parameters"]["h0"] == pytest.approx(2 * RADIUS / 3, rel=0.02)
+
+
+def test_a_ball_in_metres_checked_in_millimetres_fails_and_warns_about_units():
+    """The ball of diameter 1 (mm) written in metres, checked at 0.3 "mm": the faces reading
+    below the limit cover far more than the speck area (at most 0.1 % of the part), so the
+    check fails, and the units warning names the mix-up; units_check=False silences it and
+    keeps the verdict."""
+    V, F = icosphere(RADIUS, 2)
+    V = V * 1e-3
+    result = bemshape.thickness(V, F, min_thickness=0.3)
+    assert result["passed"] is False
+    check = result["report"]["check"]
+    area = result["report"]["mesh"]["area"]
+    assert check["speck_area"] <= 1e-3 * area * (1 + 1e-9)
+    assert check["thin_area"] > 0.5 * area
+    warning = result["units_warning"]
+    assert isinstance(warning, str) and "metres" in warning and "millimetres" in warning
+    assert "units_check=False" in warning
+    assert result["report"]["units_warning"] == warning
+    quiet = bemshape.thickness(V, F, min_thickness=0.3, units_check=False)
+    assert quiet["passed"] is False and quiet["units_warning"] is None

@@ -100,3 +100,61 @@ TEST_CASE("thin regions: one per edge-connected set below the threshold, thinnes
   CHECK(all[0].faces == 12);
   CHECK(all[0].area == Approx(6.0));
 }
+
+TEST_CASE("speck area: h0^2/4 or the request, never more than 0.1 % of the part's area") {
+  // Part of area 6000: the cap is 6.
+  CHECK(analysis::speck_area(std::nullopt, 2.0, 6000.0) == Approx(1.0));       // h0²/4
+  CHECK(analysis::speck_area(std::nullopt, 10.0, 6000.0) == Approx(6.0));      // capped
+  CHECK(analysis::speck_area(0.5, 10.0, 6000.0) == Approx(0.5));               // requested
+  CHECK(analysis::speck_area(100.0, 1.0, 6000.0) == Approx(6.0));              // capped
+  CHECK(analysis::speck_area(0.0, 1.0, 6000.0) == 0.0);
+  // A part in metres with h0 = 5 (meant in mm): h0²/4 = 6.25 exceeds the part's area 0.024.
+  CHECK(analysis::speck_area(std::nullopt, 5.0, 0.024) == Approx(2.4e-5));
+}
+
+TEST_CASE("thin check: every thin face counts; specks are set aside from the list only") {
+  const geometry::SurfaceMesh cube = unit_cube();
+  // Bottom (area 1, 0.1) and top (area 1, 0.2) thin below 0.5: two regions of area 1.
+  std::vector<analysis::ThinRegion> regions =
+      analysis::thin_regions(cube, bottom_and_top_thin(cube), 0.5);
+  REQUIRE(regions.size() == 2);
+
+  SECTION("speck area below both regions: FAIL, both listed, no specks") {
+    const analysis::ThinCheck check = analysis::thin_check(regions, 0.5);
+    CHECK_FALSE(check.pass);
+    CHECK(regions.size() == 2);
+    CHECK(check.specks.empty());
+    CHECK(check.thin_area == Approx(2.0));
+    CHECK(check.speck_total == 0.0);
+  }
+  SECTION("speck area above each region but below their sum: FAIL, both set aside as specks") {
+    const analysis::ThinCheck check = analysis::thin_check(regions, 1.5);
+    CHECK_FALSE(check.pass);  // the old rule (no region left) passed here
+    CHECK(regions.empty());
+    REQUIRE(check.specks.size() == 2);
+    CHECK(check.specks[0].minimum == Approx(0.1));  // most severe first
+    CHECK(check.thin_area == Approx(2.0));
+    CHECK(check.speck_total == Approx(2.0));
+  }
+  SECTION("speck area above the whole thin area: PASS, the specks reported") {
+    const analysis::ThinCheck check = analysis::thin_check(regions, 2.5);
+    CHECK(check.pass);
+    CHECK(check.specks.size() == 2);
+    CHECK(check.speck_total == Approx(2.0));
+  }
+  SECTION("speck area 0: any thin face fails") {
+    const analysis::ThinCheck check = analysis::thin_check(regions, 0.0);
+    CHECK_FALSE(check.pass);
+    CHECK(regions.size() == 2);
+  }
+}
+
+TEST_CASE("thin check: nothing thin passes with an empty list") {
+  const geometry::SurfaceMesh cube = unit_cube();
+  std::vector<analysis::ThinRegion> regions =
+      analysis::thin_regions(cube, bottom_and_top_thin(cube), 0.05);
+  const analysis::ThinCheck check = analysis::thin_check(regions, 0.0);
+  CHECK(check.pass);
+  CHECK(check.thin_area == 0.0);
+  CHECK(check.specks.empty());
+}

@@ -1,5 +1,6 @@
-// The page's text and charts: title, verdict, parameters, the histogram of area per thickness
-// range (SVG), the colour bar and the list of regions.
+// The page's text and charts: title, verdict, warnings, parameters, the histogram of area per
+// thickness range (SVG), the colour bar and the list of regions (thin, then the specks set
+// aside from the check's list, then thick).
 
 import { colourValues, cssColour, niceTicks, numberText, viridis } from './colour_map.js';
 
@@ -33,6 +34,14 @@ export function fillHeader(meta) {
     verdict.append(w);
   }
   verdict.append(meta.verdict_text || (word ? '' : 'No check was requested.'));
+  const warnings = document.getElementById('warnings');
+  warnings.replaceChildren();
+  for (const line of meta.warnings || []) {
+    const p = document.createElement('p');
+    p.className = 'warning';
+    p.textContent = `Warning: ${line}`;
+    warnings.append(p);
+  }
   const table = document.getElementById('parameters');
   for (const [name, value] of meta.parameters) {
     const row = table.insertRow();

@@ -6,8 +6,10 @@
 //        [--damaged NAME --make-test-mesh BIN]
 //
 // For each report (a real `bemshape thickness --html` run on the bundled plate, checked
-// against the same run's --report JSON, and a synthetic part written by
+// against the same run's --report JSON, the same plate at a limit larger than the plate,
+// whose page must show the units warning, and a synthetic part written by
 // make_html_report_sample), opened from file://:
+//   * the units warning line under the verdict where the run warned, none elsewhere;
 //   * no console error and no page error while it loads, renders and flies;
 //   * the verdict, the histogram (one bar per bin of the report) and the region list are in
 //     the DOM;
@@ -108,6 +110,9 @@ async function checkReport(browser, file, name, expect) {
   const regions = await page.locator('#regions button.region').count();
   check(regions === expect.regions && regions > 0, `${name}: ${regions} regions listed (report: ${expect.regions})`);
   check((await page.locator('#parameters tr').count()) > 0, `${name}: parameters table filled`);
+  const warnings = await page.locator('#warnings p').allTextContents();
+  check(expect.warning ? warnings.length === 1 && warnings[0].includes(expect.warning) : warnings.length === 0,
+        `${name}: warnings shown ${JSON.stringify(warnings)} (expected: ${expect.warning || 'none'})`);
 
   // Pixel checks on the 3D view alone (the panel's selected button has the marker's colour).
   const overview = await page.screenshot();
@@ -147,9 +152,13 @@ const plateReport = JSON.parse(readFileSync(plateJson, 'utf8'));
 console.log(`     plate: bemshape thickness took ${((Date.now() - started) / 1000).toFixed(1)} s`);
 // The page's JSON must hold what the run's JSON report says.
 const embedded = JSON.parse(/id="bemshape-report">(.*?)<\/script>/s.exec(readFileSync(plateHtml, 'utf8'))[1]);
-check(embedded.regions.length === plateReport.check.regions.length, `plate: ${embedded.regions.length} regions embedded, ${plateReport.check.regions.length} in the JSON report`);
-check(embedded.regions.every((r, i) => r.extreme === plateReport.check.regions[i].min && r.area === plateReport.check.regions[i].area),
+const embeddedThin = embedded.regions.filter((r) => r.kind === 'thin');
+const embeddedSpecks = embedded.regions.filter((r) => r.kind === 'speck');
+check(embeddedThin.length === plateReport.check.regions.length, `plate: ${embeddedThin.length} regions embedded, ${plateReport.check.regions.length} in the JSON report`);
+check(embeddedThin.every((r, i) => r.extreme === plateReport.check.regions[i].min && r.area === plateReport.check.regions[i].area),
       'plate: region minima and areas equal the JSON report\'s');
+check(embeddedSpecks.length === plateReport.check.specks.length, `plate: ${embeddedSpecks.length} specks embedded, ${plateReport.check.specks.length} in the JSON report`);
+check(plateReport.units_warning === null, `plate: no units warning (${plateReport.units_warning})`);
 check(embedded.faces === plateReport.mesh.solver_faces, `plate: the solver mesh (${embedded.faces} faces) is shown`);
 const histogramArea = embedded.histogram.area.reduce((a, b) => a + b, 0) + embedded.histogram.other_area;
 const solverArea = plateReport.thickness.measured_area + plateReport.thickness.unmeasurable_area;
@@ -158,6 +167,19 @@ check(Math.abs(histogramArea - solverArea) < 1e-9 * solverArea,
 
 const reports = [{ file: plateHtml, name: 'plate', expect: { verdict: 'FAIL', bins: embedded.histogram.area.length, regions: embedded.regions.length, regionFaces: embedded.regions[0]?.face_count,
                                                               docsRegion: args['docs-region'] !== undefined ? Number(args['docs-region']) : undefined } }];
+// The same plate checked at a limit larger than the plate is thick over its whole surface:
+// FAIL, and the units warning on the page.
+const unitsHtml = path.join(args.out, 'plate_units.html');
+const unitsJson = path.join(args.out, 'plate_units.json');
+const unitsRun = spawnSync(args.bemshape, ['thickness', args.plate, '--h0', '12.7', '--max-edge', args['max-edge'] || '40', '--sharp-angle', '30',
+  '--min-thickness', '1000', '--html', unitsHtml, '--report', unitsJson, '--quiet'], { encoding: 'utf8' });
+check(unitsRun.status === 1, `plate at 1000: exits 1, got ${unitsRun.status} ${unitsRun.stderr}`);
+const unitsReport = JSON.parse(readFileSync(unitsJson, 'utf8'));
+check(typeof unitsReport.units_warning === 'string' && unitsReport.units_warning.startsWith('units: --min-thickness 1000'),
+      `plate at 1000: the JSON report warns (${unitsReport.units_warning})`);
+const unitsEmbedded = JSON.parse(/id="bemshape-report">(.*?)<\/script>/s.exec(readFileSync(unitsHtml, 'utf8'))[1]);
+reports.push({ file: unitsHtml, name: 'plate at 1000', expect: { verdict: 'FAIL', bins: unitsEmbedded.histogram.area.length, regions: unitsEmbedded.regions.length,
+                                                                  regionFaces: unitsEmbedded.regions[0]?.face_count, warning: unitsReport.units_warning } });
 const sizes = [10000, ...(args.sizes ? args.sizes.split(',').map(Number) : [])];
 for (const faces of sizes) {
   const file = path.join(args.out, `sample_${faces}.html`);

@@ -6,7 +6,8 @@
 //   t(x) = 6 + 4·z/R + 1.5·sin(3·atan2(y, x))   [units]
 //
 // on the vertices, each face taking the mean of its corners. The thin regions below 4 and
-// the histogram come from the same functions as `bemshape thickness --html`.
+// the histogram and the verdict (with a speck area of 0) come from the same functions as
+// `bemshape thickness --html`.
 #include <cmath>
 #include <cstdlib>
 #include <exception>
@@ -47,6 +48,7 @@ int main(int argc, char** argv) {
     input.unmeasurable_from = 1e6;
     input.statistics = analysis::thickness_statistics(mesh, face_values, input.unmeasurable_from);
     input.thin_regions = analysis::thin_regions(mesh, face_values, threshold);
+    input.check = analysis::thin_check(input.thin_regions, 0.0);  // every region listed
     input.min_thickness = threshold;
     input.parameters = {{"part", "geodesic sphere, radius 50"},
                         {"frequency", std::to_string(frequency)},
