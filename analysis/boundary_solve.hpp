@@ -72,11 +72,13 @@ inline constexpr double kWallMeshThicknessRatio = 1.5;
 /// on a 4 mm plate: 14,052 solver faces at 2, 5,978 at 4, median 4.0145 and 4.0000).
 inline constexpr double kWallMeshMaxEdgeRatio = 4.0;
 /// Walls thinner than this times h0 get the fine edge 1.5·a·h0 (GradedMeshParameters::
-/// thin_wall_ratio): thin features well below h0. Not 1: the default h0 = 2·V/A is the wall
-/// of a plate, and most walls of a part checked at its own wall are within a few per cent
-/// of h0; at 1 a ray reading them a hair thinner gave them the fine edge (plate_holes at
-/// h0 = 12.7, its wall: 17,580 solver faces instead of 10,902, the same readings).
-inline constexpr double kWallMeshThinWallRatio = 0.75;
+/// thin_wall_ratio): thin features well below h0; thicker walls take c_t times their
+/// thickness. At 0.75 the ribs and tabs of the labelled parts (0.55–0.74·h0) took the fine
+/// edge: the L-bracket 4,300 solver faces, the boss-tab part 3,410, the tray 10,482, the
+/// 356 mm tray 267,408; at 0.5 they take 2,712, 2,188, 7,746 and 79,574, with the thin
+/// features still flagged on 99.8–100 % of their area as one region and the nominal walls'
+/// medians within 0.1 % (bench/bench_thickness_tools).
+inline constexpr double kWallMeshThinWallRatio = 0.5;
 
 /// Tessellated round walls are smoothed (crossed by the elements) where a chord sags by at
 /// most this fraction of the wall under it (geometry::GradedMeshParameters::
