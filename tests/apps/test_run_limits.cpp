@@ -237,8 +237,10 @@ TEST_CASE("hmatrix --max-memory: a part whose estimate exceeds it is refused in 
                                  "used (--max-memory); use a coarser mesh (larger --max-edge)") &&
                  Catch::Contains("or a larger --max-memory; a mesh that fits: --max-edge ") &&
                  Catch::EndsWith("or --fit-memory to take it"));
-  // Remeshing, counting, and remeshing and counting again at the edge named; nothing assembled.
-  CHECK(r.seconds < bemshape::test::time_bound(60.0));
+  // Remeshing, counting, and remeshing and counting again at the edge named (about 45 s alone
+  // on the 2-core machine, up to 110 s beside another test); nothing assembled, which at
+  // 72328 faces would take many minutes.
+  CHECK(r.seconds < bemshape::test::time_bound(150.0));
   CHECK_FALSE(fs::exists(out));
 }
 
