@@ -239,7 +239,8 @@ BoundarySolve solve_boundary(const geometry::PreparedMesh& input, const SolveOpt
       if (target < kFewestSolverFaces)
         throw ResourceError(source + ": " + first_refusal +
                             "; no coarser mesh fits: the process holds " +
-                            number_text(refused.held_bytes / 1e9, 3) + " GB already");
+                            number_text(refused.held_bytes / 1e9, 3) +
+                            " GB already; use a larger --max-memory");
       if (attempt == kMemoryFitAttempts)
         throw ResourceError(source + ": " + first_refusal + "; no uniform mesh fitted in " +
                             std::to_string(kMemoryFitAttempts) + " tries, the last (edge " +

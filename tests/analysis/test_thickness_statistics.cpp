@@ -112,7 +112,7 @@ TEST_CASE("speck area: h0^2/4 or the request, never more than 0.1 % of the part'
   CHECK(analysis::speck_area(std::nullopt, 5.0, 0.024) == Approx(2.4e-5));
 }
 
-TEST_CASE("thin check: every thin face counts; specks are set aside from the list only") {
+TEST_CASE("thin check: every thin face counts, specks are set aside from the list only") {
   const geometry::SurfaceMesh cube = unit_cube();
   // Bottom (area 1, 0.1) and top (area 1, 0.2) thin below 0.5: two regions of area 1.
   std::vector<analysis::ThinRegion> regions =
