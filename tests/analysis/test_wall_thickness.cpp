@@ -138,6 +138,31 @@ TEST_CASE("wall thickness: a square plate reads its thickness up to its rims and
   CHECK(analysis::measure_thickness(plate, check).regions.empty());
 }
 
+TEST_CASE("wall thickness: a search that runs along a wall stops within a few evaluations") {
+  // The mid-surface search stops where it runs along a wall (analysis/wall_thickness.cpp,
+  // MidSurfaceSearch): the field's wall lies across another direction than n (a plate's rims),
+  // or the mid-surface would lie deeper than kAlongWallRatio walls (the end faces of a square
+  // bar, where the field reads two equal across directions). Without either stop those
+  // searches walk along the part to its far end; the readings stay the same (such faces take
+  // their neighbours'), the cost does not.
+  const analysis::ThicknessResult plate = analysis::measure_thickness(
+      prepared(square_plate()), plate_options(analysis::ThicknessMeasure::wall));
+  const double plate_per_face =
+      double(plate.wall.evaluations) / double(plate.boundary.solver_mesh.num_faces());
+  const geometry::SurfaceMesh bar =
+      geometry::make_box_solid(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(2, 2, 16));
+  const analysis::ThicknessResult rod = analysis::measure_thickness(
+      prepared(bar), plate_options(analysis::ThicknessMeasure::wall));
+  const double bar_per_face =
+      double(rod.wall.evaluations) / double(rod.boundary.solver_mesh.num_faces());
+  // Evaluations per face (deterministic for a mesh): the plate 2.64 with both stops, 3.26
+  // without the first; the bar 3.75 with both, 3.98 without the second (its end faces are
+  // 6 % of its area, and each of their searches otherwise walks on towards the far end).
+  CAPTURE(plate_per_face, bar_per_face);
+  CHECK(plate_per_face < 2.9);
+  CHECK(bar_per_face < 3.85);
+}
+
 TEST_CASE("wall thickness: a ring reads its wall on both skins up to its end faces") {
   // Ring R1 = 4, R2 = 5.5 (wall 1.5), 3 high: curved skins with rims at both ends. There twice
   // the depth to the mid-surface is off by about ±t²H/2 (±7 % here), the skins' separation
