@@ -10,6 +10,9 @@
 //   make_test_mesh part NAME OUT.stl [CIRCLE_SEGMENTS]     (tests/support/labelled_parts.hpp)
 //   make_test_mesh damaged NAME OUT.stl [INTACT.stl]       (tests/support/damaged_meshes.hpp:
 //                                                          the damaged mesh, and its intact part)
+//   make_test_mesh damaged-list                            (the corpus, one mesh a line, tab-
+//                         separated: name, expected outcome, wall, h0, max_edge, the damaged
+//                         region's centre x y z and size, description; bench/bench_damaged_meshes.py)
 #include <cstdlib>
 #include <iostream>
 #include <string>
@@ -56,11 +59,18 @@ int main(int argc, char** argv) {
       return 0;
     mesh = d.intact;
     out = argv[4];
+  } else if (kind == "damaged-list" && argc == 2) {
+    std::cout.precision(17);
+    for (const testing::DamagedMesh& d : testing::damaged_meshes())
+      std::cout << d.name << '\t' << testing::to_string(d.outcome) << '\t' << d.wall << '\t'
+                << d.h0 << '\t' << d.max_edge << '\t' << d.site.x() << '\t' << d.site.y() << '\t'
+                << d.site.z() << '\t' << d.size << '\t' << d.description << '\n';
+    return 0;
   } else {
     std::cerr
         << "usage: make_test_mesh sphere R EDGE OUT | shell R1 R2 EDGE OUT | box LX LY LZ EDGE "
            "OUT | hollow-box SIDE WALL EDGE OUT | cylinder R L EDGE OUT | part NAME OUT [SEGMENTS] | "
-           "damaged NAME OUT [INTACT_OUT]\n";
+           "damaged NAME OUT [INTACT_OUT] | damaged-list\n";
     return 2;
   }
   output::write_binary_stl(out, mesh.vertices(), mesh.faces());
