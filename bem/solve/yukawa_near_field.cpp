@@ -1,6 +1,7 @@
 #include "bem/solve/yukawa_near_field.hpp"
 
 #include <atomic>
+#include <algorithm>
 #include <cstdint>
 #include <limits>
 #include <new>
@@ -21,34 +22,50 @@ double yukawa_cutoff_distance(double kappa, double negligible) { return -std::lo
 
 namespace {
 
-/// What decides which entries of a row are kept: the cutoff distance R* between centroids,
-/// which is also the reach of the candidate search around a panel's box (the boxes of two
-/// panels, around their corners, are no farther apart than their centroids). The centroids
-/// are copied in tree order, so that a leaf's candidates are read contiguously.
+/// What decides which entries of a row are kept: the gap between the panels' bounding
+/// balls, gap = |c_i − c_j| − r_i − r_j (a lower bound on the distance between the panels),
+/// against the cutoff distance R*. Between centroids alone the test would drop touching
+/// pairs of panels larger than R*: on a graded mesh, panels of 4·h0 against R* = 18.4/κ =
+/// 1.8·h0, which moved a 4 mm plate's median wall by 0.26 % against the dense path's.
+/// The candidate search around a panel's box reaches R* + r_i + r_max: the centroid of a
+/// panel lies in its box, so two panels within the cutoff have boxes no farther apart than
+/// that. The centroids and radii are copied in tree order, so that a leaf's candidates are
+/// read contiguously.
 struct Cutoff {
   double distance = 0.0;
+  double largest_radius = 0.0;
   Eigen::Matrix3Xd centroids;  ///< column j: the centroid of the panel at tree position j
+  Eigen::VectorXd radii;       ///< entry j: its radius about the centroid
   Cutoff(const std::vector<Panel>& panels, const ClusterTree& tree, double kappa, double negligible)
-      : distance(yukawa_cutoff_distance(kappa, negligible)), centroids(3, Eigen::Index(panels.size())) {
+      : distance(yukawa_cutoff_distance(kappa, negligible)),
+        centroids(3, Eigen::Index(panels.size())),
+        radii(Eigen::Index(panels.size())) {
     const auto& perm = tree.permutation();
-    for (Eigen::Index j = 0; j < centroids.cols(); ++j) centroids.col(j) = panels[size_t(perm[size_t(j)])].centroid;
+    for (Eigen::Index j = 0; j < centroids.cols(); ++j) {
+      const Panel& panel = panels[size_t(perm[size_t(j)])];
+      centroids.col(j) = panel.centroid;
+      radii(j) = panel.radius;
+      largest_radius = std::max(largest_radius, panel.radius);
+    }
   }
-  bool kept(const Eigen::Vector3d& test, Eigen::Index j) const {
-    return (test - centroids.col(j)).squaredNorm() <= distance * distance;
+  double reach(const Panel& test) const { return distance + test.radius + largest_radius; }
+  bool kept(const Panel& test, Eigen::Index j) const {
+    const double within = distance + test.radius + radii(j);
+    return (test.centroid - centroids.col(j)).squaredNorm() <= within * within;
   }
 };
 
 /// The columns of one row: tree positions, in increasing order, of the panels the cutoff
-/// keeps for `test` among those whose boxes come within the reach of its box (the leaves
+/// keeps for `test` among those whose boxes come within its reach of its box (the leaves
 /// are visited left to right, so the positions come out sorted). `stack` is scratch space.
 void row_columns(const Panel& test, const ClusterTree& tree, const Cutoff& cutoff,
                  std::vector<int>& stack, std::vector<Eigen::Index>& columns) {
   BoundingBox box;
   for (const auto& c : test.corners) box.extend(c);
   columns.clear();
-  tree.for_each_leaf_near(box, cutoff.distance, stack, [&](const Cluster& leaf) {
+  tree.for_each_leaf_near(box, cutoff.reach(test), stack, [&](const Cluster& leaf) {
     for (Eigen::Index j = leaf.begin; j < leaf.end; ++j)
-      if (cutoff.kept(test.centroid, j)) columns.push_back(j);
+      if (cutoff.kept(test, j)) columns.push_back(j);
   });
 }
 

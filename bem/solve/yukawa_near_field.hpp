@@ -1,9 +1,11 @@
 #pragma once
 // The exterior (Yukawa) operators as one sparse matrix. Gκ = e^{−κr}/(4πr) decays
 // exponentially, so a row needs only the panels near its own: the pair (i, j) is kept when
-// the centroids are within the cutoff distance
+// the gap between the panels' bounding balls, |c_i − c_j| − r_i − r_j (centroids c, radii r
+// about them), is within the cutoff distance
 //   R* = −ln(ε)/κ   (18.4/κ at ε = 1e−8; 23/κ at the dense path's 1e−10),
-// and everything farther is dropped. What that drops is a fraction ε of each row's sum:
+// and everything farther is dropped (a test between centroids alone would drop touching
+// panels larger than R*, as a graded mesh's are). What that drops is a fraction ε of each row's sum:
 // on a plane, ∫_{r>R} e^{−κr}/(4πr) 2πr dr = e^{−κR}/(2κ) is e^{−κR} times the whole
 // integral 1/(2κ), and a second wall at distance t (a thin part) adds at most as much
 // again, e^{−κR}/(2κ) of its e^{−κt}/(2κ); the double layer's kernel decays as fast
@@ -11,7 +13,7 @@
 // row). The dense path drops less (an entry when e^{−κ·gap} < 1e−10 for the gap
 // |c_i − c_j| − r_i − r_j between the panels, bem/operators/galerkin_operators.hpp), so every pair
 // kept here is an entry it holds too, with the same value. A panel interacts with the
-// panels within R*, O(1) of them per row whatever N, so the matrix has O(N) entries.
+// panels within R* of it, O(1) of them per row whatever N, so the matrix has O(N) entries.
 //
 // Layout, in cluster-tree order (bem/hmatrix/cluster_tree.hpp): N × 2N,
 //   Y(i, j) = −Kκ[i, j],   Y(i, N + j) = Vκ[i, j],
@@ -164,8 +166,8 @@ class YukawaNearField {
 /// them (runs no longer than YukawaNearField's kMaxRun).
 Eigen::Index yukawa_near_field_runs(const std::vector<Eigen::Index>& columns);
 
-/// The centroid distance beyond which pairs are dropped, R* = −ln(negligible)/κ [model
-/// units]: the dropped part of a row is about `negligible` of its sum (see the top of this
+/// The gap between two panels' bounding balls beyond which the pair is dropped,
+/// R* = −ln(negligible)/κ [model units]: the dropped part of a row is about `negligible` of its sum (see the top of this
 /// file).
 double yukawa_cutoff_distance(double kappa, double negligible);
 
@@ -178,7 +180,7 @@ YukawaNearFieldRows yukawa_near_field_rows(const std::vector<Panel>& panels, con
                                            double kappa, double negligible);
 
 /// Assembles Y for the panels in tree order (parallel over rows; each row is computed the
-/// same way whatever the thread count). Pairs whose centroids are farther apart than
+/// same way whatever the thread count). Pairs whose bounding balls are farther apart than
 /// R* = −ln(negligible)/κ are dropped (about `negligible` of each row's sum); the default is
 /// the dense path's threshold, larger values (the H-matrix solver passes ε) trade parts of
 /// the rows below the compression tolerance for fewer pairs. If the counted pairs do not fit in the memory the machine has

@@ -40,7 +40,8 @@ TEST_CASE("Yukawa near field: the dense operator's entries within the cutoff dis
     for (Eigen::Index j = 0; j < n; ++j) {
       const bem::Panel& test = panels[size_t(perm[size_t(i)])];
       const bem::Panel& trial = panels[size_t(perm[size_t(j)])];
-      const bool kept = (test.centroid - trial.centroid).norm() <= distance;
+      const bool kept =
+          (test.centroid - trial.centroid).norm() - test.radius - trial.radius <= distance;
       const auto e = yukawa.entry(perm[size_t(i)], perm[size_t(j)]);
       within += kept;
       mismatched += differ(sparse(i, j), kept ? -e.double_layer : 0.0);
@@ -106,6 +107,37 @@ TEST_CASE("Yukawa near field: the dense operator's entries within the cutoff dis
     rounded_differently += static_cast<float>(y.minus_double_layer()[s]) != y_single.minus_double_layer()[s] ||
                            static_cast<float>(y.single_layer()[s]) != y_single.single_layer()[s];
   CHECK(rounded_differently == 0);
+}
+
+TEST_CASE("Yukawa near field: panels larger than the cutoff keep every neighbour they touch") {
+  // A box of 0.5 elements with κ = 100: the cutoff 0.23 (ε = 1e−10) is below the distance
+  // between the centroids of panels that share an edge or a corner (0.17–0.6), as on a
+  // graded mesh whose flat walls take elements of several 1/κ. Every touching pair holds
+  // the largest entries of its row; none may be dropped.
+  const auto mesh = geometry::make_box(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(2, 2, 1), 0.5);
+  const double kappa = 100.0;
+  const auto panels = bem::make_panels(mesh);
+  const bem::ClusterTree tree(panels, 8);
+  const bem::YukawaNearField<double> y = bem::assemble_yukawa_near_field(panels, tree, kappa);
+  const Eigen::MatrixXd sparse = y.to_dense();
+  const auto& perm = tree.permutation();
+  const Eigen::Index n = mesh.num_faces();
+  const double distance = bem::yukawa_cutoff_distance(kappa, bem::YukawaAttenuation::negligible);
+  Eigen::Index touching = 0, beyond_centroid_cutoff = 0, dropped = 0;
+  for (Eigen::Index i = 0; i < n; ++i)
+    for (Eigen::Index j = 0; j < n; ++j) {
+      const bem::Panel& test = panels[size_t(perm[size_t(i)])];
+      const bem::Panel& trial = panels[size_t(perm[size_t(j)])];
+      bool shares_corner = false;
+      for (const auto& a : test.corners)
+        for (const auto& b : trial.corners) shares_corner = shares_corner || a == b;
+      if (!shares_corner) continue;
+      ++touching;
+      beyond_centroid_cutoff += (test.centroid - trial.centroid).norm() > distance;
+      dropped += sparse(i, n + j) == 0.0;
+    }
+  REQUIRE(beyond_centroid_cutoff > touching / 2);  // what the test is about
+  CHECK(dropped == 0);
 }
 
 TEST_CASE("Yukawa near field: the dropped pairs are about the tolerance of each row's sum") {
