@@ -45,27 +45,32 @@ FaceCleanup remove_degenerate_faces(const Eigen::MatrixX3d& vertices,
     tris.push_back(t);
   }
 
+  Eigen::MatrixX3i one(1, 3);  // the face relative_height is asked about, reused
   auto zero_area = [&](const Triangle& t) {
-    Eigen::MatrixX3i one(1, 3);
     one << t[0], t[1], t[2];
     return relative_height(vertices, one, 0) <= kZeroAreaRelativeHeight;
   };
 
   for (int pass = 0; pass < kMaxZeroAreaPasses; ++pass) {
-    // Faces using each undirected edge.
+    // Faces using each undirected edge, gathered at the pass's first zero-area face (most
+    // parts have none).
     std::map<std::pair<int, int>, std::vector<std::size_t>> edge_faces;
-    for (std::size_t f = 0; f < tris.size(); ++f)
-      for (int k = 0; k < 3; ++k) {
-        const int a = tris[f][static_cast<std::size_t>(k)],
-                  b = tris[f][static_cast<std::size_t>((k + 1) % 3)];
-        edge_faces[{std::min(a, b), std::max(a, b)}].push_back(f);
-      }
+    const auto gather_edge_faces = [&] {
+      for (std::size_t f = 0; f < tris.size(); ++f)
+        for (int k = 0; k < 3; ++k) {
+          const int a = tris[f][static_cast<std::size_t>(k)],
+                    b = tris[f][static_cast<std::size_t>((k + 1) % 3)];
+          edge_faces[{std::min(a, b), std::max(a, b)}].push_back(f);
+        }
+    };
     std::vector<char> removed(tris.size(), 0), touched(tris.size(), 0);
     std::vector<Triangle> added;
     std::size_t left = 0;
     for (std::size_t f = 0; f < tris.size(); ++f) {
       if (!zero_area(tris[f]))
         continue;
+      if (edge_faces.empty())
+        gather_edge_faces();
       if (touched[f]) {
         ++left;
         continue;
