@@ -14,12 +14,11 @@
 namespace bemshape::analysis {
 namespace {
 
-/// Whether any face of `mesh` with positive area reads below `unmeasurable_from` (the rule of
-/// thickness_statistics).
+/// Whether any face of `mesh` is measurable (thickness_statistics' rule).
 bool any_measurable(const geometry::SurfaceMesh& mesh, const Eigen::VectorXd& thickness,
                     double unmeasurable_from) {
   for (Eigen::Index f = 0; f < mesh.num_faces(); ++f)
-    if (thickness(f) < unmeasurable_from && mesh.face_areas()(f) > 0.0)
+    if (measurable_face(mesh, thickness, f, unmeasurable_from))
       return true;
   return false;
 }

@@ -41,7 +41,7 @@ ThicknessStatistics thickness_statistics(const geometry::SurfaceMesh& mesh,
   std::vector<Eigen::Index> measured;
   ThicknessStatistics stats;
   for (Eigen::Index f = 0; f < mesh.num_faces(); ++f) {
-    if (thickness(f) < unmeasurable_from && mesh.face_areas()(f) > 0.0)
+    if (measurable_face(mesh, thickness, f, unmeasurable_from))
       measured.push_back(f);
     else
       stats.unmeasurable_area += mesh.face_areas()(f);

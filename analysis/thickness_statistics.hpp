@@ -35,6 +35,13 @@ struct ThicknessStatistics {
   double unmeasurable_area = 0.0;                          ///< [model units²]
 };
 
+/// Whether face f's reading counts (the measurable faces above): below `unmeasurable_from`
+/// and of positive area.
+inline bool measurable_face(const geometry::SurfaceMesh& mesh, const Eigen::VectorXd& thickness,
+                            Eigen::Index f, double unmeasurable_from) {
+  return thickness(f) < unmeasurable_from && mesh.face_areas()(f) > 0.0;
+}
+
 /// Throws InputError if no face is measurable (no wall opposes any face at this h0).
 ThicknessStatistics thickness_statistics(const geometry::SurfaceMesh& mesh,
                                          const Eigen::VectorXd& thickness,
