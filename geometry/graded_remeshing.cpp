@@ -161,6 +161,7 @@ GradedMesh graded_solver_mesh(const SurfaceMesh& mesh, const GradedMeshParameter
   field_parameters.fine_edge = p.fine_edge;
   field_parameters.max_edge = std::max(p.max_edge_ratio * p.h0, p.fine_edge);
   field_parameters.gradation = p.gradation;
+  field_parameters.curvature_gradation = p.curvature_gradation;
   field_parameters.thin_wall = p.thin_wall_ratio * p.h0;
   field_parameters.wall_thickness_ratio = p.wall_thickness_ratio;
   field_parameters.curvature_ratio = p.curvature_ratio;

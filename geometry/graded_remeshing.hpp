@@ -100,6 +100,8 @@ struct GradedMeshParameters {
   double fine_edge = 0.0;  ///< h_f: the uniform rule's edge 1.5·a·h0 [model units]
   double max_edge_ratio = kDefaultMaxEdgeRatio;  ///< h_max = this·h0
   double gradation = kDefaultGradation;
+  /// SizeFieldParameters::curvature_gradation (≤ 0: gradation).
+  double curvature_gradation = 0.0;
   /// t_thin = this·h0: walls thinner than that get h_f.
   double thin_wall_ratio = 1.0;
   double wall_thickness_ratio = kWallThicknessEdgeRatio;  ///< c_t

@@ -34,12 +34,19 @@ double segment_distance(const Vec3& x, const Vec3& a, const Vec3& b) {
   return (x - (a + t * ab)).norm();
 }
 
-/// A point (a = b) or segment source of size h_s.
+/// A point (a = b) or segment source of size h_s, growing away from it at `slope` (g − 1),
+/// within h_s of it at `near_slope` ≤ slope (times the query's slope factor).
 struct Source {
   Vec3 a = Vec3::Zero(), b = Vec3::Zero();
   double size = 0.0;
   SizeReason reason = SizeReason::maximum;
   int end0 = -1, end1 = -1;  // corner vertices of a crease chain (exclusion in spacing queries)
+  double slope = 1.0, near_slope = 1.0;
+  /// h_s + near_slope·min(d, h_s) + slope·max(d − h_s, 0), at least h_s + near_slope·d.
+  double value(double distance) const {
+    const double near = std::min(distance, size);
+    return size + near_slope * near + slope * (distance - near);
+  }
 };
 
 /// Bounding-volume tree over sources, for the lower envelope min_s (h_s + slope·dist(x, s)).
@@ -53,8 +60,8 @@ class SourceTree {
 
   const std::vector<Source>& sources() const { return sources_; }
 
-  /// min over sources s with keep(s) of h_s + slope·dist(x, s), if below `bound`: (value,
-  /// index); else (bound, −1).
+  /// min over sources s with keep(s) of Source::value(slope·dist(x, s)) (a slope factor of 1
+  /// gives each source its own growth), if below `bound`: (value, index); else (bound, −1).
   template <class Keep>
   std::pair<double, int> envelope(const Vec3& x, double slope, double bound, Keep keep) const {
     std::pair<double, int> best{bound, -1};
@@ -65,14 +72,14 @@ class SourceTree {
     stack[top++] = 0;
     while (top > 0) {
       const Node& node = nodes_[static_cast<std::size_t>(stack[--top])];
-      if (node.min_size + slope * box_distance(x, node) >= best.first)
+      if (node.min_size + slope * node.min_slope * box_distance(x, node) >= best.first)
         continue;
       if (node.left < 0) {
         for (int i = node.begin; i < node.end; ++i) {
           const Source& s = sources_[static_cast<std::size_t>(i)];
           if (s.size >= best.first || !keep(s))
             continue;
-          const double value = s.size + slope * segment_distance(x, s.a, s.b);
+          const double value = s.value(slope * segment_distance(x, s.a, s.b));
           if (value < best.first)
             best = {value, i};
         }
@@ -80,8 +87,8 @@ class SourceTree {
       }
       const Node& l = nodes_[static_cast<std::size_t>(node.left)];
       const Node& r = nodes_[static_cast<std::size_t>(node.right)];
-      const bool left_first = l.min_size + slope * box_distance(x, l) <=
-                              r.min_size + slope * box_distance(x, r);
+      const bool left_first = l.min_size + slope * l.min_slope * box_distance(x, l) <=
+                              r.min_size + slope * r.min_slope * box_distance(x, r);
       // The nearer child is popped first. The depth is below 128 for any source count that
       // fits in memory: the tree is split at medians.
       stack[top++] = left_first ? node.right : node.left;
@@ -94,6 +101,7 @@ class SourceTree {
   struct Node {
     Vec3 lo = Vec3::Zero(), hi = Vec3::Zero();
     double min_size = 0.0;
+    double min_slope = 0.0;
     int begin = 0, end = 0;
     int left = -1, right = -1;
   };
@@ -112,11 +120,13 @@ class SourceTree {
     node.lo = Vec3::Constant(kInfinity);
     node.hi = Vec3::Constant(-kInfinity);
     node.min_size = kInfinity;
+    node.min_slope = kInfinity;
     for (int i = begin; i < end; ++i) {
       const Source& s = sources_[static_cast<std::size_t>(i)];
       node.lo = node.lo.cwiseMin(s.a).cwiseMin(s.b);
       node.hi = node.hi.cwiseMax(s.a).cwiseMax(s.b);
       node.min_size = std::min(node.min_size, s.size);
+      node.min_slope = std::min(node.min_slope, s.near_slope);
     }
     if (end - begin > kLeafSize) {
       int axis = 0;
@@ -196,7 +206,7 @@ const char* to_string(SizeReason reason) {
 
 struct MeshSizeField::Impl {
   double max_edge = 0.0;
-  double slope = 0.0;  // g − 1
+  double slope = 1.0;  // the query's factor on each source's own g − 1
   double gradation = 1.0;
   SourceTree tree;
   SizeFieldSummary summary;
@@ -228,15 +238,18 @@ MeshSizeField::MeshSizeField(const SurfaceMesh& mesh, const SurfaceCreases& crea
   Impl& s = *impl_;
   s.max_edge = p.max_edge;
   s.gradation = p.gradation;
-  s.slope = p.gradation - 1.0;
+  s.slope = 1.0;  // each source carries its own g − 1
+  const double curvature_gradation =
+      p.curvature_gradation > 0.0 ? std::min(p.curvature_gradation, p.gradation) : p.gradation;
   const double floor = p.min_size > 0.0 ? p.min_size : kMinSizeRatio * p.fine_edge;
   const Eigen::MatrixX3d& V = mesh.vertices();
 
   std::vector<Source> sources;
   auto add = [&](const Vec3& a, const Vec3& b, double size, SizeReason reason) {
     size = std::max(size, floor);
+    const double near_g = reason == SizeReason::curvature ? curvature_gradation : p.gradation;
     if (size < p.max_edge)
-      sources.push_back({a, b, size, reason, -1, -1});
+      sources.push_back({a, b, size, reason, -1, -1, p.gradation - 1.0, near_g - 1.0});
   };
 
   // Creases: h_f, or for the facet creases of a tessellated smooth surface the curvature rule.
@@ -318,7 +331,7 @@ MeshSizeField::MeshSizeField(const SurfaceMesh& mesh, const SurfaceCreases& crea
       return curved(end0) || curved(end1) ? curves.find(end0) : -1;
     };
     for (const CreaseChain& c : chains) {
-      chain_sources.push_back({c.a, c.b, 0.0, SizeReason::crease_spacing, c.corner0, c.corner1});
+      chain_sources.push_back({c.a, c.b, 0.0, SizeReason::crease_spacing, c.corner0, c.corner1, 1.0, 1.0});
       const double length = (c.b - c.a).norm();
       for (int corner : {c.corner0, c.corner1})
         if (!curved(corner))

@@ -10,7 +10,10 @@
 //   h(x) = min( h_max, min over sources s of ( h_s + (g − 1)·dist(x, s) ) )
 //
 // with dist the Euclidean distance to a source (a point or segment) and the gradation g: two
-// elements one element length apart differ in size by at most the factor g. The sources, each
+// elements one element length apart differ in size by at most the factor g. The curvature
+// sources may take a gentler g within their own size of them (SizeFieldParameters::
+// curvature_gradation): they are the edges of a curved surface, and a face's middle lies a
+// third of its size from them. The sources, each
 // with the reason that sets it:
 //
 //   crease           every crease segment (surface_creases.hpp) whose dihedral angle is not
@@ -96,6 +99,11 @@ struct SizeFieldParameters {
   double fine_edge = 0.0;  ///< h_f [model units]: the default solver edge 1.5·a·h0
   double max_edge = 0.0;   ///< h_max [model units]
   double gradation = kDefaultGradation;  ///< g > 1
+  /// g of the curvature sources within their own size of them, if in (1, g): a gentler
+  /// growth away from the smoothed edges of a curved surface, whose sources are its edges,
+  /// so that the size inside its faces stays near c_ρ·ρ; farther away they grow at g
+  /// (≤ 0: g everywhere).
+  double curvature_gradation = 0.0;
   /// t_thin [model units]: walls thinner than this get h_f; ≤ 0 turns the wall-thickness
   /// sources (thin wall and wall thickness) off.
   double thin_wall = 0.0;

@@ -158,3 +158,36 @@ TEST_CASE("size field: constant field and refused parameters") {
   plate.parameters.gradation = 1.0;
   CHECK_THROWS_AS(MeshSizeField(plate.mesh, plate.creases, plate.parameters), InputError);
 }
+
+TEST_CASE("size field on a smoothed rod: curvature sources grow gently within their size, at g beyond") {
+  // The axial facet edges of a 48-facet rod of radius 10 are curvature sources of
+  // c_ρ·ρ = 0.2·w/θ = 2.0. With g = 2 and a curvature gradation of 1.4, a facet's middle
+  // (w/2 = 0.65 from its edges) asks 2.0 + 0.4·w/2, not 2.0 + w/2; the end cap's centre,
+  // 10 from the edges' ends, 2.0 + 0.4·2.0 + 1.0·(10 − 2.0).
+  const SurfaceMesh rod = make_faceted_cylinder(Eigen::Vector2d(0, 0), 10.0, 0.0, 40.0, 48);
+  const double theta = 2.0 * std::numbers::pi / 48, w = 20.0 * std::sin(std::numbers::pi / 48);
+  CreaseOptions options;
+  options.smooth_angle_degrees = 15.0;
+  options.chord_tolerance = 1.0;
+  options.min_chord = 0.5;
+  SizeFieldParameters p;
+  p.fine_edge = 0.5;
+  p.max_edge = 50.0;
+  p.curvature_ratio = 0.2;
+  p.refine_creases = false;
+  p.gradation = 2.0;
+  p.curvature_gradation = 1.4;
+  const MeshSizeField field(rod, find_surface_creases(rod, options), p);
+  const double source = 0.2 * w / theta;
+  REQUIRE(source == Approx(2.0).epsilon(0.01));
+  const Eigen::Vector3d facet_middle =
+      0.5 * (Eigen::Vector3d(10.0, 0.0, 20.0) +
+             Eigen::Vector3d(10.0 * std::cos(theta), 10.0 * std::sin(theta), 20.0));
+  const double to_edge = 0.5 * w;
+  const auto [h, why] = field.size_and_reason(facet_middle);
+  CHECK(why == SizeReason::curvature);
+  CHECK(h == Approx(source + 0.4 * to_edge));
+  const auto [h_cap, why_cap] = field.size_and_reason(Eigen::Vector3d(0.0, 0.0, 0.0));
+  CHECK(why_cap == SizeReason::curvature);
+  CHECK(h_cap == Approx(source + 0.4 * source + 1.0 * (10.0 - source)));
+}
