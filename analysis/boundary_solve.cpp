@@ -38,6 +38,7 @@ geometry::GradedMeshParameters wall_reading_mesh_parameters(double h0, double a,
   p.max_edge_ratio = kWallMeshMaxEdgeRatio;
   p.wall_thickness_ratio = kWallMeshThicknessRatio;
   p.thin_wall_ratio = kWallMeshThinWallRatio;
+  p.gradation = kWallMeshGradation;
   p.refine_creases = false;
   p.min_size_ratio = kWallMeshMinSizeRatio;
   p.min_chord_ratio = 0.0;
@@ -73,7 +74,7 @@ std::uint64_t mesh_and_solve(const geometry::PreparedMesh& input, const SolveOpt
   // remesher makes) whose fast path cannot fit even at its smallest (preconditioner and
   // the shortest Krylov bases) is refused now rather than after minutes of remeshing.
   const double predicted_faces = input.mesh.area() / (0.43 * run.max_edge * run.max_edge);
-  if (options.solver.method != SolverMethod::dense && predicted_faces > kAutoDenseFaces) {
+  if (options.solver.method != SolverMethod::dense && predicted_faces > auto_dense_faces(graded)) {
     std::string reason;
     const std::uint64_t limit = resident_memory_limit_bytes(options.max_memory_bytes, &reason);
     const std::uint64_t least =
@@ -114,7 +115,7 @@ std::uint64_t mesh_and_solve(const geometry::PreparedMesh& input, const SolveOpt
   const SolverChoice& solver = options.solver;
   report_progress(progress, "assemble", 0.0);
   if (solver.method == SolverMethod::hmatrix ||
-      (solver.method == SolverMethod::automatic && faces > kAutoDenseFaces)) {
+      (solver.method == SolverMethod::automatic && faces > auto_dense_faces(graded))) {
     bem::HMatrixSolverOptions hmatrix;
     hmatrix.tolerance = solver.tolerance;
     // ε two digits below the Krylov tolerance (bem/solve/hmatrix_transmission_solver.hpp).
@@ -213,9 +214,10 @@ BoundarySolve solve_boundary(const geometry::PreparedMesh& input, const SolveOpt
   // from that estimate and remeshed, and the solver's estimate on it decides (a longer edge
   // where it still does not fit): with fit_memory it is solved on, else the refusal names it.
   const double area = input.mesh.area();
+  // The meshes tried to fit the budget are uniform.
   const long dense_up_to = options.solver.method == SolverMethod::dense     ? kNoFaceLimit
                            : options.solver.method == SolverMethod::hmatrix ? 0
-                                                                            : kAutoDenseFaces;
+                                                                            : auto_dense_faces(false);
   std::string first_refusal;  // the default mesh's refusal, what a refusal says first
   for (int attempt = 0;; ++attempt) {
     const bool check_only = attempt > 0 && !options.fit_memory;

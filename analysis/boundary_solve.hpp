@@ -47,6 +47,16 @@ struct SolverChoice {
 /// ball (bench/bench_fast_path, docs/benchmarks.md): the two paths take the same time near
 /// 1300 faces; the dense path's exact solve is kept a little beyond.
 inline constexpr long kAutoDenseFaces = 2000;
+/// ... and of the wall reading's graded mesh, whose elements span many 1/κ: there the dense
+/// assembly's every pair costs more than the H-matrix path's compression saves from 800
+/// faces on (CPU seconds of the whole run, dense against H-matrix, fine exports through
+/// `bemshape thickness`: the taper at 498 solver faces 3.3 and 4.0, the bent bracket at
+/// 1,086 5.5 and 4.4, the boss-tab part at 1,304 6.0 and 4.5, the plate-holes part at 2,122
+/// 8.8 and 5.2).
+inline constexpr long kAutoDenseGradedFaces = 800;
+/// The face count up to which SolverMethod::automatic solves densely, for a graded
+/// (wall-reading) or uniform mesh.
+constexpr long auto_dense_faces(bool graded) { return graded ? kAutoDenseGradedFaces : kAutoDenseFaces; }
 
 /// What the default solver mesh (no max_edge) is made for.
 enum class SolverMeshRule {
@@ -65,8 +75,22 @@ enum class SolverMeshRule {
 /// deep, where a ripple of the surface's wavelength λ has decayed like e^{−2πd/λ}: on the
 /// fine exports of the labelled parts (bench/bench_thickness_tools) 1.5 leaves every
 /// nominal median within 0.3 % of the design and p05 within 0.7 % (the tube: median 1.0032
-/// at 1.5, 1.0021 at 1.0) with 20–50 % fewer solver faces than 1.0.
+/// at 1.5, 1.0021 at 1.0) with 20–50 % fewer solver faces than 1.0. At 2 (gradation 2.2) the
+/// clean parts keep their medians within 0.4 % and p05 within 1 % with 10–40 % fewer faces,
+/// but a plate with 3 % noise on its export reads p05 0.969 (the vertices of larger elements
+/// average less of the noise at scale h0; tests/analysis/test_thickness_scale.cpp).
 inline constexpr double kWallMeshThicknessRatio = 1.5;
+/// Neighbouring elements of the wall-reading mesh differ in size by at most this factor
+/// (geometry::GradedMeshParameters::gradation, g). A steeper gradation would let the sizes
+/// asked at creases close together (a counterbore's rims 0.9 mm apart) grow back to the
+/// walls' sooner: at 2, with 1.4 kept within an element's size of curved surfaces' edges
+/// (GradedMeshParameters::curvature_gradation), plate_holes takes 6,452 solver faces against
+/// 10,244 (`bemshape thickness plate_holes.stl --min-thickness 11.43` on the fine export of
+/// bench/bench_thickness_tools). But a plate with 3 % noise on its export then reads within
+/// 1 % of its wall on 44.8 % of its nominal area, less than the 45.2 % on which its own wall
+/// at scale h0 is (47 % at 1.4; tests/analysis/test_thickness_scale.cpp): fewer vertices
+/// average less of the noise.
+inline constexpr double kWallMeshGradation = geometry::kDefaultGradation;
 /// ... and at most this many times h0 anywhere (h_max / h0). It binds only on walls thicker
 /// than (this / c_t)·h0: a part checked at an h0 well below its walls (`--min-thickness 1`
 /// on a 4 mm plate: 14,052 solver faces at 2, 5,978 at 4, median 4.0145 and 4.0000).

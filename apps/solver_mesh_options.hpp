@@ -19,7 +19,7 @@ namespace bemshape::apps {
 inline void add_solver_mesh_options(CLI::App& command, std::optional<double>& max_edge,
                                     std::optional<double>& sharp_angle) {
   command.add_option("--max-edge", max_edge,
-                     "Element edge length of the solver mesh, in file units: the remesher's target, no edge longer than 1.3 times it (default: for thickness --measure wall a graded mesh whose elements follow the walls, at most 2*h0; otherwise 1.5*a*h0)");
+                     "Element edge length of the solver mesh, in file units: the remesher's target, no edge longer than 1.3 times it (default: for thickness --measure wall a graded mesh whose elements follow the walls, at most 4*h0; otherwise 1.5*a*h0)");
   command
       .add_option("--sharp-angle", sharp_angle,
                   "Edges with a dihedral angle above this [degrees] are kept as creases when "
@@ -36,7 +36,9 @@ inline void add_solver_choice_options(CLI::App& command, SolverChoiceText& choic
       .add_option("--solver", choice.method,
                   "Linear solver: dense (LU, exact, O(N^2) memory), hmatrix (H-matrix + GMRES, "
                   "for large meshes) or auto (dense up to " +
-                      std::to_string(analysis::kAutoDenseFaces) + " solver faces)")
+                      std::to_string(analysis::kAutoDenseFaces) + " solver faces, " +
+                      std::to_string(analysis::kAutoDenseGradedFaces) +
+                      " on the wall reading's graded mesh)")
       ->check(CLI::IsMember({"auto", "dense", "hmatrix"}))
       ->capture_default_str();
   command
