@@ -44,6 +44,8 @@ struct Source {
   double slope = 1.0, near_slope = 1.0;
   /// h_s + near_slope·min(d, h_s) + slope·max(d − h_s, 0), at least h_s + near_slope·d.
   double value(double distance) const {
+    if (near_slope == slope)
+      return size + slope * distance;  // one gradation: the plain cone, rounded as such
     const double near = std::min(distance, size);
     return size + near_slope * near + slope * (distance - near);
   }
