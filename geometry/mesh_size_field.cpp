@@ -208,7 +208,6 @@ const char* to_string(SizeReason reason) {
 
 struct MeshSizeField::Impl {
   double max_edge = 0.0;
-  double slope = 1.0;  // the query's factor on each source's own g − 1
   double gradation = 1.0;
   SourceTree tree;
   SizeFieldSummary summary;
@@ -240,7 +239,6 @@ MeshSizeField::MeshSizeField(const SurfaceMesh& mesh, const SurfaceCreases& crea
   Impl& s = *impl_;
   s.max_edge = p.max_edge;
   s.gradation = p.gradation;
-  s.slope = 1.0;  // each source carries its own g − 1
   const double curvature_gradation =
       p.curvature_gradation > 0.0 ? std::min(p.curvature_gradation, p.gradation) : p.gradation;
   const double floor = p.min_size > 0.0 ? p.min_size : kMinSizeRatio * p.fine_edge;
@@ -452,7 +450,8 @@ MeshSizeField& MeshSizeField::operator=(MeshSizeField&&) noexcept = default;
 
 std::pair<double, SizeReason> MeshSizeField::size_and_reason(const Eigen::Vector3d& x) const {
   const auto [value, index] =
-      impl_->tree.envelope(x, impl_->slope, impl_->max_edge, [](const Source&) { return true; });
+      impl_->tree.envelope(x, 1.0, impl_->max_edge,  // each source's own growth
+                           [](const Source&) { return true; });
   if (index < 0)
     return {impl_->max_edge, SizeReason::maximum};
   return {value, impl_->tree.sources()[static_cast<std::size_t>(index)].reason};
