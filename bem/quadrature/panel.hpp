@@ -29,6 +29,10 @@ struct Panel {
   double radius = 0;  ///< max corner distance from the centroid: |x − y| ≥ |x − centroid| − radius
 };
 
+/// The Euclidean distance from x to the closed triangle (the nearest point may be inside,
+/// on an edge or at a corner) [model units].
+double distance_to_panel(const Panel& panel, const Eigen::Vector3d& x);
+
 /// The panel of triangle (a, b, c). Throws InputError for a degenerate (zero-area) triangle.
 Panel make_panel(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c);
 

@@ -238,7 +238,9 @@ PanelIntegrals integrate_panel(const Kernel& kernel, const Panel& panel, const E
 
 /// Yukawa single and double layer of `panel` at x to within kAttenuatedRuleAccuracy of the
 /// Laplace magnitudes at the same distance (AttenuatedRule), no gradients: the cheapest rule
-/// of attenuated_far_field_rules() for the target, integrate_panel where none applies. For
+/// of attenuated_far_field_rules() for the target, else integrate_panel's rule, else the polar
+/// scheme at the accuracy the attenuation e^{−κc} leaves (zero where the whole triangle is
+/// too far to matter). For
 /// the Galerkin entries, which are judged against their rows' largest entries
 /// (GalerkinOperators, YukawaAttenuation), not against themselves.
 template <class Kernel>
@@ -248,9 +250,29 @@ PanelIntegrals integrate_attenuated_panel(const Kernel& kernel, const Panel& pan
   const double dist = (x - panel.centroid).norm();
   const TriangleRule* rule =
       select_attenuated_rule(dist / panel.diameter, kernel.kappa() * panel.diameter);
-  if (rule == nullptr || dist - panel.radius > kernel.cutoff_distance())
-    return integrate_panel(kernel, panel, x);
-  return gauss_panel_integrals(kernel, panel, x, *rule, false);
+  if (dist - panel.radius > kernel.cutoff_distance()) return {};
+  if (rule != nullptr) return gauss_panel_integrals(kernel, panel, x, *rule, false);
+  if (const TriangleRule* standard = select_far_field_rule(dist / panel.diameter,
+                                                           kernel.kappa() * panel.diameter))
+    return gauss_panel_integrals(kernel, panel, x, *standard, false);
+  // The polar scheme, whose cost grows with κ·diameter, needs only the accuracy the
+  // attenuation leaves. With c the distance from x to the triangle itself (the bounding ball
+  // above is pessimistic for panels many 1/κ across), ρ ≥ c over the panel and r ≤ c + radius
+  // (r = |x − centroid|), the values are bounded by
+  //   |V| ≤ B_V = e^{−κc}|T|/(4πc),   |K| ≤ B_K = e^{−κc}(1 + κc)|T|/(4πc²),
+  // so errors of τ·B keep V within kAttenuatedRuleAccuracy·|T|/(4πr) and K within
+  // kAttenuatedRuleAccuracy·|T|/(4πr²) for
+  //   τ = kAttenuatedRuleAccuracy · e^{κc} · min(c/r, (c/r)²/(1 + κc)),
+  // and with τ ≥ 1 the panel contributes nothing at that accuracy.
+  const double c = distance_to_panel(panel, x);
+  if (c > 0.0) {
+    const double kc = kernel.kappa() * c, near = c / dist;
+    const double tau =
+        kAttenuatedRuleAccuracy * std::exp(kc) * std::min(near, near * near / (1.0 + kc));
+    if (tau >= 1.0) return {};
+    return polar_panel_integrals(kernel, panel, x, false, PolarResolution::for_accuracy(tau));
+  }
+  return polar_panel_integrals(kernel, panel, x, false);
 }
 
 /// The single layer alone (the far-field hot path of dense and compressed assembly): same

@@ -20,11 +20,11 @@ inline double length2d(double a, double b) { return std::sqrt(a * a + b * b); }
 
 using Vec2 = Eigen::Vector2d;
 
-/// Gauss–Legendre points per composite piece. The integrands in v (angle) and u (radius) are
-/// analytic in the strip |Im| < π/2; on pieces of width ≤ max_piece_width a 10-point rule
-/// converges like (6.4)^{−20} ≈ 1e−16 there, and the measured error stays below 1e−10
-/// (docs/quadrature.md, table).
-constexpr int points_per_piece = 10;
+/// The integrands in v (angle) and u (radius) are analytic in the strip |Im| < π/2; on
+/// pieces of width ≤ max_piece_width an n-point Gauss–Legendre rule converges like
+/// (6.4)^{−2n} there: PolarResolution's 10 points give ≈ 1e−16, and the measured error stays
+/// below 1e−10 (docs/quadrature.md, table). The radial tails of the gradients always take 10.
+constexpr int tail_points_per_piece = 10;
 /// Widest composite piece in v or u: keeps the Bernstein-ellipse argument above valid.
 constexpr double max_piece_width = 1.0;
 /// Pieces double in width away from the point of the edge nearest to x, where the e^{−κρ'}
@@ -43,9 +43,10 @@ constexpr double in_plane_tolerance = 1e-12;
 /// (Θ e^{−κc}) instead of inside the quadrature; below it the combined form with expm1 avoids
 /// the cancellation 1 − e^{−κδ} for small κδ. Either is exact in exact arithmetic.
 constexpr double split_exponent = 1.0;
-/// Pieces where the exponential factor has decayed by e^{−45} ≈ 3e−20 relative to its value
-/// at the point nearest to x are dropped (far below the 1e−8 target and double rounding).
-constexpr double negligible_exponent = 45.0;
+/// The radial tails stop where the exponential factor has decayed by e^{−45} ≈ 3e−20
+/// relative to its value at the point nearest to x (far below the 1e−8 target and double
+/// rounding); the angular pieces by PolarResolution::negligible_exponent.
+constexpr double tail_negligible_exponent = 45.0;
 
 double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
 
@@ -54,7 +55,8 @@ double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x
 /// visit(s, w) receives nodes with positive weights (the integral over the interval, whatever
 /// its orientation); stop(s) is asked at the start of each piece and ends the walk when true.
 template <class Visit, class Stop>
-void graded_gauss(double start, double end, double w0, Visit&& visit, Stop&& stop) {
+void graded_gauss(int points_per_piece, double start, double end, double w0, Visit&& visit,
+                  Stop&& stop) {
   const GaussLegendreRule& gl = gauss_legendre(points_per_piece);
   const double direction = end >= start ? 1.0 : -1.0;
   const double length = std::abs(end - start);
@@ -82,9 +84,9 @@ struct GradedNodes {
     weights.clear();
   }
   template <class Stop>
-  void append(double start, double end, double w0, Stop&& stop) {
+  void append(int points_per_piece, double start, double end, double w0, Stop&& stop) {
     graded_gauss(
-        start, end, w0,
+        points_per_piece, start, end, w0,
         [&](double s, double w) {
           nodes.push_back(s);
           weights.push_back(w);
@@ -108,11 +110,11 @@ struct EdgeFrame {
 std::array<double, 2> yukawa_tails(double kappa, double abs_d, double R, double rho) {
   if (abs_d == 0.0) return {-std::expint(-kappa * R) + std::exp(-kappa * R), 0.0};
   const double U = std::asinh(R / abs_d);
-  const double u_stop = std::acosh(rho / abs_d + negligible_exponent / (kappa * abs_d));
+  const double u_stop = std::acosh(rho / abs_d + tail_negligible_exponent / (kappa * abs_d));
   const double w0 = 1.0 / (kappa * R + std::sqrt(kappa * rho));
   double t_sl = 0.0, t_dl = 0.0;
   graded_gauss(
-      U, u_stop, w0,
+      tail_points_per_piece, U, u_stop, w0,
       [&](double u, double w) {
         const double ch = std::cosh(u), th = std::tanh(u);
         const double z = kappa * abs_d * ch;
@@ -126,9 +128,31 @@ std::array<double, 2> yukawa_tails(double kappa, double abs_d, double R, double 
 
 }  // namespace
 
+PolarResolution PolarResolution::for_accuracy(double relative_accuracy) {
+  // Worst error relative to the magnitude bound of n points per piece with pieces kept to
+  // e^{−30}, and of dropping pieces beyond e^{−E} (about e^{−E} whatever n), measured over
+  // targets up to three diameters from three panel shapes at κ·diameter 3–100 ("polar
+  // resolution: measured errors", tests/bem/quadrature/test_polar_quadrature.cpp). Each is
+  // taken with a factor 10 to spare.
+  struct Measured {
+    int points_per_piece;
+    double worst;
+  };
+  static constexpr Measured measured[] = {{2, 2.7e-3}, {3, 1.6e-4}, {4, 1.3e-5}, {5, 1.0e-6},
+                                          {6, 7.1e-8}, {7, 4.7e-9}, {8, 4.6e-10}};
+  constexpr double spare = 10.0;
+  const PolarResolution full;
+  for (const Measured& m : measured)
+    if (spare * m.worst <= relative_accuracy)
+      return {m.points_per_piece,
+              std::min(full.negligible_exponent, std::log(spare / relative_accuracy))};
+  return full;
+}
+
 template <class Kernel>
 PanelIntegrals polar_panel_integrals(const Kernel& kernel, const Panel& panel,
-                                     const Eigen::Vector3d& x, bool with_gradients) {
+                                     const Eigen::Vector3d& x, bool with_gradients,
+                                     const PolarResolution& resolution) {
   constexpr bool yukawa = Kernel::has_exponential_decay;
   const double kappa = kernel.kappa();
   double d = (x - panel.corners[0]).dot(panel.normal);
@@ -238,18 +262,19 @@ PanelIntegrals polar_panel_integrals(const Kernel& kernel, const Panel& panel,
       if (!split) return false;
       const double R = p * std::cosh(vs);
       const double delta = (R * R - q2) / (length2d(R, d) + c);
-      return kappa * delta > negligible_exponent;
+      return kappa * delta > resolution.negligible_exponent;
     };
     const double v1 = std::asinh(E.t1 / p), v2 = std::asinh(E.t2 / p);
     thread_local GradedNodes graded;
     graded.clear();
+    const int n = resolution.points_per_piece;
     if (v1 < 0.0 && v2 > 0.0) {
-      graded.append(0.0, v2, first_width(0.0), negligible);
-      graded.append(0.0, v1, first_width(0.0), negligible);
+      graded.append(n, 0.0, v2, first_width(0.0), negligible);
+      graded.append(n, 0.0, v1, first_width(0.0), negligible);
     } else if (v1 >= 0.0) {
-      graded.append(v1, v2, first_width(v1), negligible);
+      graded.append(n, v1, v2, first_width(v1), negligible);
     } else {
-      graded.append(v2, v1, first_width(v2), negligible);
+      graded.append(n, v2, v1, first_width(v2), negligible);
     }
     if (with_gradients)
       for (size_t i = 0; i < graded.nodes.size(); ++i)
@@ -322,8 +347,10 @@ PanelIntegrals polar_panel_integrals(const Kernel& kernel, const Panel& panel,
 }
 
 template PanelIntegrals polar_panel_integrals<LaplaceKernel>(const LaplaceKernel&, const Panel&,
-                                                             const Eigen::Vector3d&, bool);
+                                                             const Eigen::Vector3d&, bool,
+                                                             const PolarResolution&);
 template PanelIntegrals polar_panel_integrals<YukawaKernel>(const YukawaKernel&, const Panel&,
-                                                            const Eigen::Vector3d&, bool);
+                                                            const Eigen::Vector3d&, bool,
+                                                            const PolarResolution&);
 
 }  // namespace bemshape::bem

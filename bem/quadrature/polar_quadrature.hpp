@@ -38,11 +38,28 @@
 
 namespace bemshape::bem {
 
+/// How finely the polar scheme resolves the angle: Gauss–Legendre points per composite
+/// piece, and the decay e^{−κδ} (δ = ρ' − c, c the distance from x to T) beyond which the
+/// Yukawa pieces of an edge are dropped. The default is the full accuracy, about 1e−10 of
+/// the value or better; coarser ones serve targets whose whole contribution is attenuated
+/// far below the accuracy the caller needs (for_accuracy).
+struct PolarResolution {
+  int points_per_piece = 10;
+  double negligible_exponent = 45.0;
+  /// The coarsest resolution whose angular integrals stay within `relative_accuracy` of
+  /// the magnitude of the value (the bound e^{−κc}|T|/(4πc) for the Yukawa single layer):
+  /// measured in tests/bem/quadrature/test_polar_quadrature.cpp ("polar resolution"). At
+  /// 1e−10 or below, the default.
+  static PolarResolution for_accuracy(double relative_accuracy);
+};
+
 /// Panel integrals by the polar scheme, valid for every target (used for targets near or on
-/// the panel: cost ~ 100–300 kernel evaluations, more for gradients).
+/// the panel: cost ~ 100–300 kernel evaluations, more for gradients). `resolution` applies to
+/// the values; gradients are always at full accuracy.
 /// Kernel ∈ {LaplaceKernel, YukawaKernel} (explicitly instantiated).
 template <class Kernel>
 PanelIntegrals polar_panel_integrals(const Kernel& kernel, const Panel& panel,
-                                     const Eigen::Vector3d& x, bool with_gradients);
+                                     const Eigen::Vector3d& x, bool with_gradients,
+                                     const PolarResolution& resolution = {});
 
 }  // namespace bemshape::bem

@@ -258,3 +258,61 @@ TEST_CASE("polar: the values do not depend on whether gradients are asked for") 
   check(LaplaceKernel{}, "laplace");
   for (const double kappa : {0.3, 3.0, 30.0}) check(YukawaKernel{kappa}, "yukawa");
 }
+
+namespace {
+
+/// Worst error of the Yukawa values at `resolution` against the full resolution, relative to
+/// their magnitude bounds over the panel (ρ ≥ c, c the distance from x to T):
+///   V: e^{−κc}|T|/(4πc),   K: e^{−κc}(1 + κc)|T|/(4πc²),
+/// over targets around the three rule-test panels at distances c up to three diameters,
+/// κ·diameter from 3 to 100, in `directions` directions drawn from `seed`.
+double worst_attenuated_error(const bem::PolarResolution& resolution, int directions, unsigned seed,
+                              double min_attenuation) {
+  double worst = 0.0;
+  for (const bem::Panel& p : testing::rule_test_panels())
+    for (const double kd : {3.0, 10.0, 30.0, 100.0})
+      for (const double ratio : {0.0, 0.1, 0.4, 0.8, 1.3, 2.0, 3.0})
+        for (const Vector3d& dir : testing::target_directions(directions, seed)) {
+          const double kappa = kd / p.diameter;
+          const Vector3d x = p.centroid + ratio * p.diameter * dir;
+          const double c = bem::distance_to_panel(p, x);
+          if (c <= 0.0 || std::exp(-kappa * c) < min_attenuation) continue;
+          const YukawaKernel kernel(kappa);
+          const auto coarse = polar_panel_integrals(kernel, p, x, false, resolution);
+          const auto full = polar_panel_integrals(kernel, p, x, false);
+          const double v_bound = std::exp(-kappa * c) * p.area / (4 * std::numbers::pi * c);
+          const double k_bound = v_bound * (1.0 + kappa * c) / c;
+          worst = std::max({worst, std::abs(coarse.single_layer - full.single_layer) / v_bound,
+                            std::abs(coarse.double_layer - full.double_layer) / k_bound});
+        }
+  return worst;
+}
+
+}  // namespace
+
+TEST_CASE("polar resolution: measured errors against the magnitude bound (prints the table)",
+          "[.calibration][polar]") {
+  // The calibration behind PolarResolution::for_accuracy: the worst error of each number of
+  // points per piece and each exponent at which pieces are dropped, relative to the bound
+  // e^{−κc}|T|/(4πc) of the single layer (and its double-layer analogue).
+  for (const int n : {2, 3, 4, 5, 6, 7, 8, 10})
+    for (const double exponent : {3.0, 6.0, 10.0, 15.0, 20.0, 30.0, 45.0}) {
+      const double worst = worst_attenuated_error({n, exponent}, 43, 1, 0.0);
+      WARN("points per piece " << n << ", dropped beyond e^-" << exponent << ": worst " << worst);
+    }
+}
+
+TEST_CASE("polar resolution: each accuracy asked is kept, more cheaply than the full one",
+          "[polar]") {
+  // Targets off the calibration's directions: the values at for_accuracy(τ) are within τ of
+  // the magnitude bound, and the coarser accuracies take fewer points than the default.
+  for (const double tau : {1e-10, 1e-8, 1e-6, 1e-4, 1e-2, 0.3}) {
+    const bem::PolarResolution r = bem::PolarResolution::for_accuracy(tau);
+    INFO("accuracy " << tau << ": " << r.points_per_piece << " points per piece, dropped beyond e^-"
+                     << r.negligible_exponent);
+    CHECK(worst_attenuated_error(r, 9, 17, 0.0) <= tau);
+    if (tau >= 1e-6) CHECK(r.points_per_piece < bem::PolarResolution{}.points_per_piece);
+  }
+  CHECK(bem::PolarResolution::for_accuracy(1e-12).points_per_piece ==
+        bem::PolarResolution{}.points_per_piece);
+}
