@@ -43,6 +43,28 @@ Eigen::Vector3d random_surface_point(const SurfaceMesh& mesh, std::mt19937& rng)
          s * (mesh.corner(f, 2) - mesh.corner(f, 0));
 }
 
+/// A 48-facet rod of radius 10 and length 40 read as a smooth surface (facet angles of 7.5°
+/// below the 15° smooth angle): its axial facet edges, of width w and turning θ, are
+/// curvature sources; h_f 0.5, curvature ratio 0.2, no maximum in the way.
+struct SmoothedRod {
+  SurfaceMesh mesh = make_faceted_cylinder(Eigen::Vector2d(0, 0), 10.0, 0.0, 40.0, 48);
+  double theta = 2.0 * std::numbers::pi / 48;
+  double w = 20.0 * std::sin(std::numbers::pi / 48);
+  CreaseOptions options;
+  SizeFieldParameters parameters;
+  SmoothedRod() {
+    options.smooth_angle_degrees = 15.0;
+    options.chord_tolerance = 1.0;
+    options.min_chord = 0.5;
+    parameters.fine_edge = 0.5;
+    parameters.max_edge = 50.0;
+    parameters.curvature_ratio = 0.2;
+  }
+  MeshSizeField field() const {
+    return MeshSizeField(mesh, find_surface_creases(mesh, options), parameters);
+  }
+};
+
 }  // namespace
 
 TEST_CASE("size field on a plate: h_f on a crease, growing with g − 1 away from it, the wall far from it") {
@@ -117,29 +139,18 @@ TEST_CASE("size field: creases closer than h_f/c_l bound the size between them")
 }
 
 TEST_CASE("size field on a smoothed rod: curvature c_ρ·ρ, or the chord limit where smaller") {
-  const SurfaceMesh rod = make_faceted_cylinder(Eigen::Vector2d(0, 0), 10.0, 0.0, 40.0, 48);
-  const double theta = 2.0 * std::numbers::pi / 48, w = 20.0 * std::sin(std::numbers::pi / 48);
-  CreaseOptions options;
-  options.smooth_angle_degrees = 15.0;
-  options.chord_tolerance = 1.0;
-  options.min_chord = 0.5;
-  SizeFieldParameters p;
-  p.fine_edge = 0.5;
-  p.max_edge = 50.0;
-  p.curvature_ratio = 0.2;
+  SmoothedRod rod;
   // A point on an axial facet edge, halfway up (the rims' creases are 20 away).
   const Eigen::Vector3d on_edge(10.0, 0.0, 20.0);
   {
-    const MeshSizeField field(rod, find_surface_creases(rod, options), p);
-    const auto [h, why] = field.size_and_reason(on_edge);
-    CHECK(h == Approx(0.2 * w / theta));
+    const auto [h, why] = rod.field().size_and_reason(on_edge);
+    CHECK(h == Approx(0.2 * rod.w / rod.theta));
     CHECK(why == SizeReason::curvature);
   }
   // δ for a chord of 1 crossing one facet edge: sag = h·θ/4.
-  options.chord_tolerance = theta / 4.0;
+  rod.options.chord_tolerance = rod.theta / 4.0;
   {
-    const MeshSizeField field(rod, find_surface_creases(rod, options), p);
-    const auto [h, why] = field.size_and_reason(on_edge);
+    const auto [h, why] = rod.field().size_and_reason(on_edge);
     CHECK(h == Approx(1.0));
     CHECK(why == SizeReason::chord);
   }
@@ -164,20 +175,12 @@ TEST_CASE("size field on a smoothed rod: curvature sources grow gently within th
   // c_ρ·ρ = 0.2·w/θ = 2.0. With g = 2 and a curvature gradation of 1.4, a facet's middle
   // (w/2 = 0.65 from its edges) asks 2.0 + 0.4·w/2, not 2.0 + w/2; the end cap's centre,
   // 10 from the edges' ends, 2.0 + 0.4·2.0 + 1.0·(10 − 2.0).
-  const SurfaceMesh rod = make_faceted_cylinder(Eigen::Vector2d(0, 0), 10.0, 0.0, 40.0, 48);
-  const double theta = 2.0 * std::numbers::pi / 48, w = 20.0 * std::sin(std::numbers::pi / 48);
-  CreaseOptions options;
-  options.smooth_angle_degrees = 15.0;
-  options.chord_tolerance = 1.0;
-  options.min_chord = 0.5;
-  SizeFieldParameters p;
-  p.fine_edge = 0.5;
-  p.max_edge = 50.0;
-  p.curvature_ratio = 0.2;
-  p.refine_creases = false;
-  p.gradation = 2.0;
-  p.curvature_gradation = 1.4;
-  const MeshSizeField field(rod, find_surface_creases(rod, options), p);
+  SmoothedRod rod;
+  rod.parameters.refine_creases = false;
+  rod.parameters.gradation = 2.0;
+  rod.parameters.curvature_gradation = 1.4;
+  const MeshSizeField field = rod.field();
+  const double theta = rod.theta, w = rod.w;
   const double source = 0.2 * w / theta;
   REQUIRE(source == Approx(2.0).epsilon(0.01));
   const Eigen::Vector3d facet_middle =
