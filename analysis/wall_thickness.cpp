@@ -41,7 +41,7 @@ constexpr double kAlongWallCosine = 0.5;
 /// The treecode's order and acceptance (bem/evaluate/laplace_treecode.hpp): θ = 0.5 and
 /// p = 10 keep s and ∇s within about 4e−5 of the direct sums (docs/benchmarks.md,
 /// "Interior evaluation at many points"), so the zero of g is found to about that fraction
-/// of the wall, well below kDepthTolerance. The mid-surface of a wall meshed with elements
+/// of the wall, well below kNewtonAcceptance. The mid-surface of a wall meshed with elements
 /// as long as the wall is thick lies within a panel or two of the surface, where most of the
 /// cost is the exact integrals of the panels the acceptance criterion does not admit: θ = 0.5
 /// admits clusters at twice their radius, where θ = 0.3 admits them at three times (the
@@ -84,6 +84,8 @@ class MidSurfaceSearch {
     double tau = slope0 * g0 > 0.0 ? g0 / slope0 : 0.5 * parameters_.h0;
     tau = std::clamp(tau, kMinDepthRatio * parameters_.h0, reach_);
     double lo = 0.0, g_lo = g0, hi = kNaN, g_hi = kNaN;
+    // The previous evaluation's depth and h_mid: the slope of h_mid along −n.
+    double tau_before = kNaN, h_mid_before = kNaN;
     for (int step = 0; step < kMaxSteps; ++step) {
       ++result.evaluations;
       const bem::LaplaceTreecode::Value v = treecode_.evaluate(x - tau * n, workspace, counts);
@@ -100,17 +102,25 @@ class MidSurfaceSearch {
       // Newton's step where g falls from g0 towards its zero (g0·g' < 0), else none.
       double next = g0 * slope < 0.0 ? tau - g / slope : kNaN;
       const auto tensor = features::feature_tensor<3>(v.gradient);
-      if (std::isfinite(next) && std::abs(next - tau) <= kDepthTolerance * tau) {
+      const double h_mid =
+          features::mid_surface_thickness(tensor.eigenvalues, parameters_.h0, parameters_.a);
+      if (std::isfinite(next) && std::abs(next - tau) <= kNewtonAcceptance * tau) {
+        // The readings moved from τ to τ0 = next: s along its gradient, h_mid along the line
+        // through this and the previous evaluation (where there is one).
+        const double shift = next - tau;
         result.depth = next;
         result.point = x - next * n;
-        result.mid_thickness =
-            features::mid_surface_thickness(tensor.eigenvalues, parameters_.h0, parameters_.a);
-        result.rim_indicator = v.s.norm() / std::abs(g0);
+        result.mid_thickness = h_mid;
+        if (std::isfinite(tau_before) && std::isfinite(h_mid_before) && tau != tau_before)
+          result.mid_thickness += (h_mid - h_mid_before) / (tau - tau_before) * shift;
+        result.rim_indicator = (v.s.transpose() - shift * (v.gradient * n)).norm() / std::abs(g0);
         if (tensor.eigenvalues(1) < kDistinctEigenvalueRatio * tensor.eigenvalues(2))
           result.alignment = std::abs(tensor.eigenvectors.col(2).dot(n));
         result.found = true;
         return result;
       }
+      tau_before = tau;
+      h_mid_before = h_mid;
       if (std::isfinite(hi)) {
         // Bracketed: Newton inside the bracket, else regula falsi.
         if (!(next > lo && next < hi)) next = lo - g_lo * (hi - lo) / (g_hi - g_lo);
@@ -125,9 +135,7 @@ class MidSurfaceSearch {
         const Eigen::Vector3d& lambda = tensor.eigenvalues;
         const bool across_other = lambda(1) < kDistinctEigenvalueRatio * lambda(2) &&
                                   std::abs(tensor.eigenvectors.col(2).dot(n)) < kAlongWallCosine;
-        const double wall =
-            features::mid_surface_thickness(lambda, parameters_.h0, parameters_.a);
-        if (across_other || next > kAlongWallDepthRatio * wall) {
+        if (across_other || next > kAlongWallDepthRatio * h_mid) {
           result.ran_along = true;
           return result;
         }
