@@ -3,7 +3,8 @@
 // a limit between what the process holds before a stage and what that stage would reach.
 //
 // Each limit is written for the Release build. The sanitizer build holds about 0.15 GB more
-// from its start (AddressSanitizer's shadow memory and allocator), so a limit chosen just
+// from its start (AddressSanitizer's shadow memory and allocator), and up to 0.2 GB once a
+// part is read and remeshed (freed blocks wait in ASan's quarantine), so a limit chosen just
 // above Release's holding would stop the run at an earlier stage than the test is about
 // (docs/reliability.md, "Sanitizers"). There the limits are raised by
 // BEMSHAPE_TEST_RESIDENT_OVERHEAD_MB, which tests/CMakeLists.txt sets.
