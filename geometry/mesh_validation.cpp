@@ -20,21 +20,44 @@ struct EdgeUse {
   bool forward;
 };
 
-/// All edge uses of non-collapsed faces, sorted so that uses of one edge are adjacent.
+/// All edge uses of non-collapsed faces, sorted by (lo, hi, face) so that uses of one edge
+/// are adjacent: bucketed by lo in face order (a counting sort, linear in the uses), then
+/// each vertex's few uses ordered by hi, stably, so that equal edges stay in face order.
 std::vector<EdgeUse> sorted_edge_uses(const Eigen::MatrixX3i& faces) {
-  std::vector<EdgeUse> uses;
-  uses.reserve(static_cast<std::size_t>(3 * faces.rows()));
+  int vertices = 0;
+  for (Eigen::Index f = 0; f < faces.rows(); ++f)
+    vertices = std::max(vertices, faces.row(f).maxCoeff() + 1);
+  std::vector<int> start(static_cast<std::size_t>(vertices) + 1, 0);
+  for (Eigen::Index f = 0; f < faces.rows(); ++f) {
+    if (collapsed(faces, f))
+      continue;
+    for (int k = 0; k < 3; ++k)
+      ++start[static_cast<std::size_t>(std::min(faces(f, k), faces(f, (k + 1) % 3))) + 1];
+  }
+  for (std::size_t v = 1; v < start.size(); ++v)
+    start[v] += start[v - 1];
+  std::vector<EdgeUse> uses(static_cast<std::size_t>(start.back()));
+  std::vector<int> next(start.begin(), start.end() - 1);
   for (Eigen::Index f = 0; f < faces.rows(); ++f) {
     if (collapsed(faces, f))
       continue;
     for (int k = 0; k < 3; ++k) {
       const int a = faces(f, k), b = faces(f, (k + 1) % 3);
-      uses.push_back({std::min(a, b), std::max(a, b), static_cast<int>(f), k, a < b});
+      const int lo = std::min(a, b);
+      uses[static_cast<std::size_t>(next[static_cast<std::size_t>(lo)]++)] = {
+          lo, std::max(a, b), static_cast<int>(f), k, a < b};
     }
   }
-  std::sort(uses.begin(), uses.end(), [](const EdgeUse& x, const EdgeUse& y) {
-    return std::tie(x.lo, x.hi, x.face) < std::tie(y.lo, y.hi, y.face);
-  });
+  for (int v = 0; v < vertices; ++v) {  // insertion sort: stable, and a vertex has few uses
+    const int begin = start[static_cast<std::size_t>(v)], end = start[static_cast<std::size_t>(v) + 1];
+    for (int i = begin + 1; i < end; ++i) {
+      const EdgeUse use = uses[static_cast<std::size_t>(i)];
+      int j = i;
+      for (; j > begin && uses[static_cast<std::size_t>(j - 1)].hi > use.hi; --j)
+        uses[static_cast<std::size_t>(j)] = uses[static_cast<std::size_t>(j - 1)];
+      uses[static_cast<std::size_t>(j)] = use;
+    }
+  }
   return uses;
 }
 
