@@ -38,16 +38,20 @@ constexpr double kAlongWallDepthRatio = features::kAlongWallRatio;
 constexpr double kDistinctEigenvalueRatio = 0.5;
 /// ... more than 60° from the search direction: the search runs along the wall.
 constexpr double kAlongWallCosine = 0.5;
-/// The treecode's order and acceptance (bem/evaluate/laplace_treecode.hpp): θ = 0.5 and
-/// p = 10 keep s and ∇s within about 4e−5 of the direct sums (docs/benchmarks.md,
-/// "Interior evaluation at many points"), so the zero of g is found to about that fraction
-/// of the wall, well below kNewtonAcceptance. The mid-surface of a wall meshed with elements
-/// as long as the wall is thick lies within a panel or two of the surface, where most of the
-/// cost is the exact integrals of the panels the acceptance criterion does not admit: θ = 0.5
-/// admits clusters at twice their radius, where θ = 0.3 admits them at three times (the
-/// l-bracket's wall stage 2.5 → 1.5 s, the readings unchanged to 1e−5). Those exact
-/// integrals are taken at the treecode's own accuracy (bem/evaluate/near_panel_integrals.hpp).
-constexpr int kTreecodeOrder = 10;
+/// The treecode's order and acceptance (bem/evaluate/laplace_treecode.hpp). θ = 0.5 admits
+/// clusters at twice their radius, where θ = 0.3 admits them at three times: the mid-surface
+/// of a wall meshed with elements as long as the wall is thick lies within a panel or two of
+/// the surface, where most of the cost is the exact integrals of the panels the criterion
+/// does not admit (the l-bracket's wall stage 2.5 → 1.5 s against θ = 0.3, the readings
+/// unchanged to 1e−5); those are taken within 1e−6 (bem/evaluate/near_panel_integrals.hpp).
+/// At θ = 0.5 the truncation error goes as θ^{p+1}, 16 times per two orders (4.4e−5 of ∇s at
+/// p = 10 on the ball, docs/benchmarks.md, "Interior evaluation at many points"): p = 7
+/// leaves an estimated 4e−4 of ∇s with 120 Taylor terms instead of p = 10's 286. The readings
+/// of the bench's parts move by at most 1e−4 of the wall and the search takes 0.6 of the time
+/// (plate_holes 2.4–2.7 → 1.5 s). p = 6 (1.2 s) moves the worst face half a wall from the
+/// step of 2 to 4 from 3.96 to 4.03 % off, past its test's 4 %; p = 4 moves plate_holes'
+/// median by 0.13 % (docs/benchmarks.md, "What was tried and did not pay").
+constexpr int kTreecodeOrder = 7;
 constexpr double kTreecodeTheta = 0.5;
 /// Panels per leaf of the treecode's cluster tree: smaller leaves than the evaluation of
 /// `features` (16), so that fewer panels near a point are integrated exactly.
