@@ -217,6 +217,11 @@ class GalerkinOperators {
   /// shared ones compare equal exactly).
   static bool touching(const Panel& a, const Panel& b) { return touching_order(a, b).has_value(); }
 
+  /// The accuracy of the Yukawa polar integrals at the outer rule points, relative to an
+  /// unattenuated entry (integrate_attenuated_panel); YukawaAttenuation::absolute_accuracy
+  /// unless an assembly that stores its entries more coarsely asks for less.
+  void set_polar_accuracy(double accuracy) { polar_accuracy_ = accuracy; }
+
   Entry entry(Eigen::Index row, Eigen::Index col) const {
     const Panel& test = (*panels_)[static_cast<size_t>(row)];
     const Panel& trial = (*panels_)[static_cast<size_t>(col)];
@@ -311,7 +316,7 @@ class GalerkinOperators {
   /// (integrate_attenuated_panel), for Laplace to 1e−8 of the entry (integrate_panel).
   PanelIntegrals trial_integrals(const Panel& trial, const Eigen::Vector3d& x) const {
     if constexpr (Kernel::has_exponential_decay)
-      return integrate_attenuated_panel(kernel_, trial, x);
+      return integrate_attenuated_panel(kernel_, trial, x, polar_accuracy_);
     else
       return integrate_panel(kernel_, trial, x);
   }
@@ -552,6 +557,7 @@ class GalerkinOperators {
   Eigen::Index face(Eigen::Index i) const { return faces_ ? (*faces_)[size_t(i)] : i; }
 
   Kernel kernel_;
+  double polar_accuracy_ = YukawaAttenuation::absolute_accuracy;
   const std::vector<Panel>* panels_;
   const std::vector<Eigen::Index>* faces_;  ///< face number of each panel, or null: i
   PanelArrays arrays_;  ///< *panels_ as arrays, for fill_range and fill_row

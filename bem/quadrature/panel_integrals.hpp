@@ -243,9 +243,13 @@ PanelIntegrals integrate_panel(const Kernel& kernel, const Panel& panel, const E
 /// too far to matter). For
 /// the Galerkin entries, which are judged against their rows' largest entries
 /// (GalerkinOperators, YukawaAttenuation), not against themselves.
+/// `accuracy` replaces kAttenuatedRuleAccuracy in the polar scheme's requirement (the Gauss
+/// rules keep theirs): the exterior near field stored in single precision asks for no more
+/// than its rounding (bem/solve/yukawa_near_field.hpp).
 template <class Kernel>
 PanelIntegrals integrate_attenuated_panel(const Kernel& kernel, const Panel& panel,
-                                          const Eigen::Vector3d& x) {
+                                          const Eigen::Vector3d& x,
+                                          double accuracy = kAttenuatedRuleAccuracy) {
   static_assert(Kernel::has_exponential_decay, "the attenuated rules are for the Yukawa kernel");
   const double dist = (x - panel.centroid).norm();
   const TriangleRule* rule =
@@ -267,8 +271,7 @@ PanelIntegrals integrate_attenuated_panel(const Kernel& kernel, const Panel& pan
   const double c = distance_to_panel(panel, x);
   if (c > 0.0) {
     const double kc = kernel.kappa() * c, near = c / dist;
-    const double tau =
-        kAttenuatedRuleAccuracy * std::exp(kc) * std::min(near, near * near / (1.0 + kc));
+    const double tau = accuracy * std::exp(kc) * std::min(near, near * near / (1.0 + kc));
     if (tau >= 1.0) return {};
     return polar_panel_integrals(kernel, panel, x, false, PolarResolution::for_accuracy(tau));
   }

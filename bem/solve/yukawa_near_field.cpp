@@ -6,6 +6,7 @@
 #include <limits>
 #include <new>
 #include <string>
+#include <type_traits>
 #include <cmath>
 #include <vector>
 
@@ -148,6 +149,7 @@ YukawaNearField<Scalar> assemble_yukawa_near_field(const std::vector<Panel>& pan
     throw ran_out_of_memory(n);
   }
   GalerkinOperators<YukawaKernel> yukawa(YukawaKernel{kappa}, panels);
+  if constexpr (std::is_same_v<Scalar, float>) yukawa.set_polar_accuracy(kSinglePrecisionPolarAccuracy);
   yukawa.tabulate_touching_pairs();
 
   std::atomic<Eigen::Index> rows_done{0};

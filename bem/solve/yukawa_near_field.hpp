@@ -166,6 +166,15 @@ class YukawaNearField {
 /// them (runs no longer than YukawaNearField's kMaxRun).
 Eigen::Index yukawa_near_field_runs(const std::vector<Eigen::Index>& columns);
 
+/// The accuracy of the polar panel integrals (relative to an unattenuated entry,
+/// integrate_attenuated_panel) when the entries are stored in single precision: rounding to
+/// float already moves the largest entries by up to 2⁻²⁴ ≈ 6e−8 of themselves, so the
+/// 1e−9 of YukawaAttenuation::absolute_accuracy would buy nothing. The Gauss rules and the
+/// touching pairs keep their own accuracy. The tube of the wall-reading bench: exterior near
+/// field 2.3–2.9 → 1.7 s on one thread, walls unchanged (docs/quadrature.md, "Near targets
+/// of panels many 1/κ across").
+inline constexpr double kSinglePrecisionPolarAccuracy = 1e-7;
+
 /// The gap between two panels' bounding balls beyond which the pair is dropped,
 /// R* = −ln(negligible)/κ [model units]: the dropped part of a row is about `negligible` of its sum (see the top of this
 /// file).
