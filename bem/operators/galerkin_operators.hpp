@@ -312,8 +312,9 @@ class GalerkinOperators {
   }
 
   /// The trial panel's single and double layer at an outer rule point x: for Yukawa to
-  /// YukawaAttenuation::absolute_accuracy of an unattenuated entry
-  /// (integrate_attenuated_panel), for Laplace to 1e−8 of the entry (integrate_panel).
+  /// YukawaAttenuation::absolute_accuracy of an unattenuated entry, its polar integrals to
+  /// set_polar_accuracy's (integrate_attenuated_panel), for Laplace to 1e−8 of the entry
+  /// (integrate_panel).
   PanelIntegrals trial_integrals(const Panel& trial, const Eigen::Vector3d& x) const {
     if constexpr (Kernel::has_exponential_decay)
       return integrate_attenuated_panel(kernel_, trial, x, polar_accuracy_);
