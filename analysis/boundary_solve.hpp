@@ -78,11 +78,11 @@ enum class SolverMeshRule {
 /// the wall (near edges, holes, ribs), while away from them, where the edges' disturbance has
 /// decayed like e^{−πd/t}, the field is that of a plate at any element size. The wall is read
 /// half a wall deep. On the fine exports of bench/bench_thickness_tools, against c_t = 1.5:
-/// the 356 mm tray 77,788 → 45,248 solver faces (83 → 45–53 s), median 1.0001 → 1.0000;
-/// the 100×80×30 tray 7,746 → 4,434, plate-holes 3,888 → 3,626, the L-bracket 2,712 →
-/// 2,384, the boss-tab part 2,188 → 1,898, the bent bracket 1,734 → 1,330; every nominal
-/// median within 0.35 % of the design and p05 within 1.7 % (plate_holes 0.9829), the thin
-/// features one region each on 99.8–100 % of their area. The noisy plate of
+/// the 356 mm tray 77,788 → 45,248 solver faces (83 → 48–49 s, 1.75 → 1.06 GB), median
+/// 1.0001 → 1.0000; the 100×80×30 tray 7,746 → 4,220, plate-holes 3,888 → 3,626, the
+/// L-bracket 2,712 → 2,360, the boss-tab part 2,188 → 1,898, the bent bracket 1,734 → 1,330;
+/// every nominal median within 0.35 % of the design and p05 within 1.8 % (plate_holes
+/// 0.9827), the thin features one region each on 99.8–100 % of their area. The noisy plate of
 /// tests/analysis/test_thickness_scale.cpp reads within 1 % of its wall on 47.2 % of its area
 /// (its own wall at scale h0 on 46.7 %), p05 0.973.
 inline constexpr double kWallMeshThicknessRatio = 3.0;
@@ -105,7 +105,7 @@ inline constexpr double kWallMeshMaxEdgeRatio = 4.0;
 /// thin_wall_ratio): thin features well below h0; thicker walls take c_t times their
 /// thickness. At 0.75 the ribs and tabs of the labelled parts (0.55–0.74·h0) took the fine
 /// edge: the L-bracket 4,300 solver faces, the boss-tab part 3,410, the tray 10,482, the
-/// 356 mm tray 267,408; at 0.5 they take 2,712, 2,188, 7,746 and 79,574, with the thin
+/// 356 mm tray 267,408; at 0.5 they take 2,712, 2,188, 7,746 and 79,574 (c_t 1.5), with the thin
 /// features still flagged on 99.8–100 % of their area as one region and the nominal walls'
 /// medians within 0.1 % (bench/bench_thickness_tools).
 inline constexpr double kWallMeshThinWallRatio = 0.5;
