@@ -80,6 +80,27 @@ TEST_CASE("Yukawa single layer of the unit density on a large flat panel tends t
   CHECK(checked > 20);
 }
 
+TEST_CASE("Yukawa single layer on a flat panel at kappa*diameter 21 (the 6-point near rule) "
+          "tends to 1/(2κ)") {
+  // The square of the test above at κ = 150: panels 21/κ across, whose near pairs that do not
+  // touch take the 6-point outer rule (GalerkinOperators::near_outer_rule).
+  const double kappa = 150.0;
+  const auto box = geometry::make_box(Eigen::Vector3d(-1, -1, -1), Eigen::Vector3d(1, 1, 0), 0.1);
+  const auto panels = make_panels(box);
+  const GalerkinOperators op(YukawaKernel{kappa}, panels);
+  int checked = 0;
+  for (Eigen::Index j = 0; j < box.num_faces(); j += 7) {
+    const Eigen::Vector3d c = box.face_centroids().row(j).transpose();
+    if (c.z() < -1e-12 || c.head<2>().cwiseAbs().maxCoeff() > 1.0 - 20.0 / kappa) continue;
+    REQUIRE(kappa * panels[size_t(j)].diameter > 12.0);
+    double sum = 0.0;
+    for (Eigen::Index k = 0; k < box.num_faces(); ++k) sum += op.entry(j, k).single_layer;
+    CHECK(sum / box.face_areas()(j) == Approx(1.0 / (2.0 * kappa)).epsilon(1e-7));
+    ++checked;
+  }
+  CHECK(checked > 20);
+}
+
 TEST_CASE("Galerkin entries are invariant under rotation and translation") {
   const auto mesh = geometry::make_geodesic_sphere(0.5, 2);
   const Eigen::Matrix3d r =
