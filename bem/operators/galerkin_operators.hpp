@@ -211,8 +211,9 @@ class GalerkinOperators {
   /// use the Sauter–Schwab rules instead.) Beyond κ·diameter = 12 the 6-point rule is again
   /// enough: the trial panel's potential has fallen off within a small part of the test
   /// panel's area, and the same row sums are within 9.5e−9 with it at κ·diameter 21 (1.4e−8
-  /// with the 12-point rule; tests/bem/operators/test_galerkin_operators.cpp asks for 1e−7), within 5.6e−4 and 2.1e−4 with either at 42 and 71 (the touching
-  /// pairs' rules set those). The exterior near field of the 356 mm tray of
+  /// with the 12-point rule; the test asks for 1e−7), within 5.6e−4 and 2.1e−4 with either
+  /// at 42 and 71 (the touching pairs' rules set those). The exterior near field of the
+  /// 356 mm tray of
   /// bench/bench_thickness_tools (panels up to κ·diameter 40): 15.0–15.3 → 12.3 s, its
   /// readings unchanged; plate_holes' panels are mostly below 12.
   const TriangleRule& near_outer_rule(const Panel& test) const {

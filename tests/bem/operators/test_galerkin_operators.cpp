@@ -25,6 +25,26 @@ Eigen::MatrixXd assemble(const std::vector<Panel>& panels, auto kernel, bool dou
     }
   return m;
 }
+
+/// On a 2×2 square meshed with edges of 0.1, the row sums of Vκ of the panels further than
+/// 20/κ from the border, which see an infinite plane up to e^{−20}, divided by their areas
+/// are 1/(2κ) within `tolerance`; those panels are more than `min_kappa_diameter`/κ across.
+void check_plane_row_sums(double kappa, double tolerance, double min_kappa_diameter = 0.0) {
+  const auto box = geometry::make_box(Eigen::Vector3d(-1, -1, -1), Eigen::Vector3d(1, 1, 0), 0.1);
+  const auto panels = make_panels(box);
+  const GalerkinOperators op(YukawaKernel{kappa}, panels);
+  int checked = 0;
+  for (Eigen::Index j = 0; j < box.num_faces(); j += 7) {
+    const Eigen::Vector3d c = box.face_centroids().row(j).transpose();
+    if (c.z() < -1e-12 || c.head<2>().cwiseAbs().maxCoeff() > 1.0 - 20.0 / kappa) continue;
+    REQUIRE(kappa * panels[size_t(j)].diameter > min_kappa_diameter);
+    double sum = 0.0;
+    for (Eigen::Index k = 0; k < box.num_faces(); ++k) sum += op.entry(j, k).single_layer;
+    CHECK(sum / box.face_areas()(j) == Approx(1.0 / (2.0 * kappa)).epsilon(tolerance));
+    ++checked;
+  }
+  CHECK(checked > 20);
+}
 }  // namespace
 
 TEST_CASE("Laplace double layer of the unit density is -1/2 on a closed surface (K0[1] = -1/2)") {
@@ -62,43 +82,15 @@ TEST_CASE("Laplace single layer is symmetric (Galerkin)") {
 }
 
 TEST_CASE("Yukawa single layer of the unit density on a large flat panel tends to 1/(2κ)") {
-  // A 2×2 square meshed finely, κ = 50: panels further than 20/κ from the border see an
-  // infinite plane up to e^{−20}.
-  const double kappa = 50.0;
-  const auto box = geometry::make_box(Eigen::Vector3d(-1, -1, -1), Eigen::Vector3d(1, 1, 0), 0.1);
-  const auto panels = make_panels(box);
-  const GalerkinOperators op(YukawaKernel{kappa}, panels);
-  int checked = 0;
-  for (Eigen::Index j = 0; j < box.num_faces(); j += 7) {
-    const Eigen::Vector3d c = box.face_centroids().row(j).transpose();
-    if (c.z() < -1e-12 || c.head<2>().cwiseAbs().maxCoeff() > 1.0 - 20.0 / kappa) continue;
-    double sum = 0.0;
-    for (Eigen::Index k = 0; k < box.num_faces(); ++k) sum += op.entry(j, k).single_layer;
-    CHECK(sum / box.face_areas()(j) == Approx(1.0 / (2.0 * kappa)).epsilon(1e-6));
-    ++checked;
-  }
-  CHECK(checked > 20);
+  // κ = 50: panels 7/κ across, whose near pairs that do not touch take the 12-point outer rule.
+  check_plane_row_sums(50.0, 1e-6);
 }
 
 TEST_CASE("Yukawa single layer on a flat panel at kappa*diameter 21 (the 6-point near rule) "
           "tends to 1/(2κ)") {
-  // The square of the test above at κ = 150: panels 21/κ across, whose near pairs that do not
-  // touch take the 6-point outer rule (GalerkinOperators::near_outer_rule).
-  const double kappa = 150.0;
-  const auto box = geometry::make_box(Eigen::Vector3d(-1, -1, -1), Eigen::Vector3d(1, 1, 0), 0.1);
-  const auto panels = make_panels(box);
-  const GalerkinOperators op(YukawaKernel{kappa}, panels);
-  int checked = 0;
-  for (Eigen::Index j = 0; j < box.num_faces(); j += 7) {
-    const Eigen::Vector3d c = box.face_centroids().row(j).transpose();
-    if (c.z() < -1e-12 || c.head<2>().cwiseAbs().maxCoeff() > 1.0 - 20.0 / kappa) continue;
-    REQUIRE(kappa * panels[size_t(j)].diameter > 12.0);
-    double sum = 0.0;
-    for (Eigen::Index k = 0; k < box.num_faces(); ++k) sum += op.entry(j, k).single_layer;
-    CHECK(sum / box.face_areas()(j) == Approx(1.0 / (2.0 * kappa)).epsilon(1e-7));
-    ++checked;
-  }
-  CHECK(checked > 20);
+  // κ = 150: panels 21/κ across, whose near pairs that do not touch take the 6-point outer
+  // rule (GalerkinOperators::near_outer_rule).
+  check_plane_row_sums(150.0, 1e-7, 12.0);
 }
 
 TEST_CASE("Galerkin entries are invariant under rotation and translation") {
