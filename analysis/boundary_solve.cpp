@@ -118,8 +118,7 @@ std::uint64_t mesh_and_solve(const geometry::PreparedMesh& input, const SolveOpt
       (solver.method == SolverMethod::automatic && faces > auto_dense_faces(graded))) {
     bem::HMatrixSolverOptions hmatrix;
     hmatrix.tolerance = solver.tolerance;
-    // ε two digits below the Krylov tolerance (bem/solve/hmatrix_transmission_solver.hpp).
-    hmatrix.aca_tolerance = 1e-2 * solver.tolerance;
+    hmatrix.aca_tolerance = kCompressionToleranceRatio * solver.tolerance;
     // A single-precision H-matrix perturbs a product by about 4e−7: fine for a residual of
     // 1e−6, not for a tighter one.
     hmatrix.single_precision = solver.tolerance >= 1e-6;

@@ -1,4 +1,5 @@
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <string>
 
 #include "core/errors.hpp"
@@ -120,11 +121,20 @@ TEST_CASE("a mesh already as fine as the target and well shaped is kept as it is
   const SurfaceMesh kept = refine_to_edge_length(sphere, longest);
   CHECK(kept.vertices() == sphere.vertices());
   CHECK(kept.faces() == sphere.faces());
-  // A smaller target remeshes; so does a much larger one (the sphere has more than twice the
-  // faces it asks for), and so does plate_holes at any size (slivers below 20°).
+  // A smaller target remeshes; so does a much larger one (the sphere has more than three times
+  // the faces it asks for), and so does plate_holes at any size (slivers below 20°).
   CHECK_FALSE(fine_enough(sphere, 0.99 * longest));
   CHECK(refine_to_edge_length(sphere, 0.7 * longest).num_faces() > sphere.num_faces());
   CHECK_FALSE(fine_enough(sphere, 3.0 * longest));
+  // Up to kKeepInputFaceRatio (3) times the faces the target asks for, area/(0.433·h²), the
+  // input is kept: at 2.5 times (the 81,920-face sphere at its default edge asks for 2.54
+  // times fewer) it is, at 3.5 times it is not.
+  const auto target_for_face_ratio = [&](double ratio) {
+    return std::sqrt(ratio * sphere.area() / (0.4330127 * double(sphere.num_faces())));
+  };
+  REQUIRE(target_for_face_ratio(2.5) >= longest);
+  CHECK(fine_enough(sphere, target_for_face_ratio(2.5)));
+  CHECK_FALSE(fine_enough(sphere, target_for_face_ratio(3.5)));
   const PreparedMesh plate = prepare_mesh_file(data + "/meshes/plate_holes.STL");
   CHECK_FALSE(fine_enough(plate.mesh, 1000.0));
 }
