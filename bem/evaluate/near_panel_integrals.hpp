@@ -10,11 +10,14 @@
 // centroid (|T|·|G0^{(k)}(r)| for the k-th derivative). A treecode with θ = 0.5 and p = 10 is
 // itself within about 4e−5 of the direct sums (docs/benchmarks.md, "Interior evaluation at
 // many points"), so 1e−8 per panel buys nothing; the panels it integrates lie within a few
-// diameters of the target, where the 1e−8 rules need 36–64 points and these 7–36.
+// diameters of the target, where the 1e−8 rules need 36–64 points.
 //
 // Rule selection by η = |x − centroid| / diameter: the cheapest Gauss rule on the triangle
 // (bem/quadrature/triangle_quadrature.hpp) of near_panel_rules() whose η range contains the
-// target, the polar scheme (exact radial integrals) below the last row.
+// target, the closed forms of bem/quadrature/laplace_triangle_potentials.hpp below the last
+// row. Those take 75–85 ns with gradients at any distance (2-core Zen 3), where the rules
+// they replace took 140 ns (12 points, η 2.5–4) to 720 ns (64 points, η 1–1.5) and the polar
+// scheme 3.5 μs at η 0.5.
 
 #include <array>
 
@@ -24,7 +27,7 @@
 #include "bem/quadrature/panel.hpp"
 #include "bem/quadrature/panel_integral_values.hpp"
 #include "bem/quadrature/panel_integrals.hpp"
-#include "bem/quadrature/polar_quadrature.hpp"
+#include "bem/quadrature/laplace_triangle_potentials.hpp"
 #include "bem/quadrature/triangle_quadrature.hpp"
 
 namespace bemshape::bem {
@@ -42,16 +45,12 @@ struct NearPanelRule {
 /// The table, cheapest rule first. Measured worst errors over an equilateral, a right and an
 /// obtuse panel and 43 directions per ratio (tests/bem/evaluate/test_near_panel_integrals.cpp
 /// prints them; docs/quadrature.md, "The treecode's near field"), each row at the smallest
-/// ratio it serves: 3 points from η 40 (2.5e−7), 7 from 4 (5.5e−7), 12 from 2.5 (1.5e−7), 16
-/// from 2 (2.0e−7), 36 from 1.5 (4.9e−8), 64 from 1 (7.8e−8).
-inline const std::array<NearPanelRule, 6>& near_panel_rules() {
-  static const std::array<NearPanelRule, 6> table = {{
+/// ratio it serves: 3 points from η 40 (2.5e−7), 7 from 4 (5.5e−7). Nearer targets take the
+/// closed forms, exact to rounding (about 1e−12 of the entries' magnitudes).
+inline const std::array<NearPanelRule, 2>& near_panel_rules() {
+  static const std::array<NearPanelRule, 2> table = {{
       {40.0, &symmetric_triangle_rule(2)},
       {4.0, &symmetric_triangle_rule(5)},
-      {2.5, &symmetric_triangle_rule(6)},
-      {2.0, &symmetric_triangle_rule(8)},
-      {1.5, &collapsed_gauss_rule(6)},
-      {1.0, &collapsed_gauss_rule(8)},
   }};
   return table;
 }
@@ -63,7 +62,7 @@ inline PanelIntegrals near_panel_integrals(const Panel& panel, const Eigen::Vect
   for (const NearPanelRule& row : near_panel_rules())
     if (ratio2 >= row.min_ratio * row.min_ratio)
       return gauss_panel_integrals(LaplaceKernel{}, panel, x, *row.rule, with_gradients);
-  return polar_panel_integrals(LaplaceKernel{}, panel, x, with_gradients);
+  return laplace_triangle_potentials(panel, x, with_gradients);
 }
 
 }  // namespace bemshape::bem
