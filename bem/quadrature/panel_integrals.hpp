@@ -12,7 +12,8 @@
 //  * η below the smallest threshold, or κ·diameter too large for a polynomial rule: for
 //    Laplace the closed forms of bem/quadrature/laplace_triangle_potentials.hpp (75–85 ns
 //    against the polar scheme's 500–660 on a 2-core Zen 3), for Yukawa the polar scheme
-//    (bem/quadrature/polar_quadrature.hpp), exact radial integrals; both valid on and near the panel;
+//    (bem/quadrature/polar_quadrature.hpp), exact radial integrals; both valid on and near
+//    the panel (exact_panel_integrals);
 //  * otherwise a Gauss rule on the triangle (bem/quadrature/triangle_quadrature.hpp) whose degree
 //    decreases as η grows, chosen so that the relative error stays below 1e−8.
 // Kernel ∈ {LaplaceKernel, YukawaKernel}.
@@ -221,6 +222,19 @@ PanelIntegrals gauss_panel_integrals(const Kernel& kernel, const Panel& panel,
   return out;
 }
 
+/// The panel integrals for targets on and near the panel, where no Gauss rule serves, exact in
+/// the radial direction: for Laplace in closed form (bem/quadrature/
+/// laplace_triangle_potentials.hpp), for Yukawa by the polar scheme at full resolution
+/// (bem/quadrature/polar_quadrature.hpp).
+template <class Kernel>
+PanelIntegrals exact_panel_integrals(const Kernel& kernel, const Panel& panel,
+                                     const Eigen::Vector3d& x, bool with_gradients) {
+  if constexpr (Kernel::has_exponential_decay)
+    return polar_panel_integrals(kernel, panel, x, with_gradients);
+  else
+    return laplace_triangle_potentials(panel, x, with_gradients);
+}
+
 /// Single layer, double layer and (if with_gradients) their gradients ∇_x for the panel and
 /// target x, to 1e−8 relative accuracy (docs/quadrature.md).
 template <class Kernel>
@@ -234,12 +248,7 @@ PanelIntegrals integrate_panel(const Kernel& kernel, const Panel& panel, const E
     kappa_diameter = kernel.kappa() * panel.diameter;
   }
   const TriangleRule* rule = select_far_field_rule(dist / panel.diameter, kappa_diameter);
-  if (rule == nullptr) {
-    if constexpr (Kernel::has_exponential_decay)
-      return polar_panel_integrals(kernel, panel, x, with_gradients);
-    else
-      return laplace_triangle_potentials(panel, x, with_gradients);
-  }
+  if (rule == nullptr) return exact_panel_integrals(kernel, panel, x, with_gradients);
   return gauss_panel_integrals(kernel, panel, x, *rule, with_gradients);
 }
 
@@ -299,12 +308,7 @@ double single_layer(const Kernel& kernel, const Panel& panel, const Eigen::Vecto
   }
   const TriangleRule* rule =
       select_far_field_rule_squared(dist2, panel.diameter * panel.diameter, kappa_diameter);
-  if (rule == nullptr) {
-    if constexpr (Kernel::has_exponential_decay)
-      return polar_panel_integrals(kernel, panel, x, false).single_layer;
-    else
-      return laplace_triangle_potentials(panel, x, false).single_layer;
-  }
+  if (rule == nullptr) return exact_panel_integrals(kernel, panel, x, false).single_layer;
   const Eigen::Vector3d xa = x - panel.corners[0];
   const int n = rule->size();
   const double* xi = rule->xi.data();
