@@ -19,9 +19,6 @@ constexpr double kDegree = std::numbers::pi / 180.0;
 /// failure of the remesher (whose guards keep angles far above it), reported as such.
 constexpr double kDegenerateAngleDegrees = 1e-3;
 
-/// Area of an equilateral triangle of unit edge, √3/4: a face of size h covers this·h².
-constexpr double kEquilateralArea = 0.4330127018922193;
-
 /// Split bound of the remesher (Botsch–Kobbelt's 4/3): an input whose edges are all within
 /// it of h needs no split.
 constexpr double kFineEnoughEdgeRatio = 4.0 / 3.0;

@@ -89,6 +89,10 @@ GradedMesh remesh_to_size_field(const SurfaceMesh& mesh, const SurfaceCreases& c
                                 const GradedRemeshingOptions& options = {},
                                 const ProgressCallback& progress = {});
 
+/// Area of an equilateral triangle of unit edge, √3/4: a face of size h covers this·h², so a
+/// surface of area A asks for about A/(this·h²) faces.
+inline constexpr double kEquilateralArea = 0.4330127018922193;
+
 /// An input finer than the field asks by less than this factor in face count is kept rather
 /// than coarsened: the user's own well-shaped triangles (a generated ball, a mesh from another
 /// solver) read better than a remeshed surface of fewer faces. The 81,920-face geodesic sphere

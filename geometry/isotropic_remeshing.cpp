@@ -13,9 +13,6 @@
 namespace bemshape::geometry {
 namespace {
 
-/// Area of an equilateral triangle of unit edge, √3/4: faces ≈ area / (this·h²).
-constexpr double kEquilateralArea = 0.4330127018922193;
-
 /// The size floor of the uniform mode is kMinSizeRatio times the smaller of h and this
 /// fraction of the part's diagonal (a boolean's 0.004 mm leftover creases are not resolved,
 /// the facets of a hole are, whatever h).

@@ -53,8 +53,8 @@ GradedMesh refine_uniformly(const SurfaceMesh& mesh, double target_edge,
 
 /// Whether `mesh` is already what remeshing to target_edge aims at, and is kept as it is: no
 /// edge longer than target_edge, no angle below 20°, at most kKeepInputFaceRatio times the
-/// faces of the target (area/(0.433·target_edge²)). A geodesic sphere given with --max-edge at or above its
-/// longest edge is solved on its own triangles.
+/// faces of the target (area/(kEquilateralArea·target_edge²)). A geodesic sphere given with
+/// --max-edge at or above its longest edge is solved on its own triangles.
 bool fine_enough(const SurfaceMesh& mesh, double target_edge);
 
 /// The same by CGAL's isotropic remeshing (the mesh only), or by refine_uniformly where CGAL

@@ -126,11 +126,11 @@ TEST_CASE("a mesh already as fine as the target and well shaped is kept as it is
   CHECK_FALSE(fine_enough(sphere, 0.99 * longest));
   CHECK(refine_to_edge_length(sphere, 0.7 * longest).num_faces() > sphere.num_faces());
   CHECK_FALSE(fine_enough(sphere, 3.0 * longest));
-  // Up to kKeepInputFaceRatio (3) times the faces the target asks for, area/(0.433·h²), the
+  // Up to kKeepInputFaceRatio (3) times the faces the target asks for, area/(√3/4·h²), the
   // input is kept: at 2.5 times (the 81,920-face sphere at its default edge asks for 2.54
   // times fewer) it is, at 3.5 times it is not.
   const auto target_for_face_ratio = [&](double ratio) {
-    return std::sqrt(ratio * sphere.area() / (0.4330127 * double(sphere.num_faces())));
+    return std::sqrt(ratio * sphere.area() / (kEquilateralArea * double(sphere.num_faces())));
   };
   REQUIRE(target_for_face_ratio(2.5) >= longest);
   CHECK(fine_enough(sphere, target_for_face_ratio(2.5)));
