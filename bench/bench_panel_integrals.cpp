@@ -3,8 +3,9 @@
 // the ACA row/column generators will call them, and the far-field lanes those generators use
 // (V and K of 8 pairs at once, bem/operators/far_field_lanes.hpp); then the cost per point of the larger
 // Gauss rules (gauss_panel_integrals) on one panel and of the exponential per SIMD lane
-// (linalg/vector_exponential.hpp against Eigen's). Not a test: prints entries per second and
-// nanoseconds.
+// (linalg/vector_exponential.hpp against Eigen's), and the cost of one call of the Yukawa polar
+// scheme (bem/quadrature/polar_quadrature.hpp) at the resolutions the exterior near field asks
+// for. Not a test: prints entries per second and nanoseconds.
 //
 //   build/bench/bench_panel_integrals [frequency=24]
 #include <chrono>
@@ -19,9 +20,11 @@
 #include "bem/quadrature/panel.hpp"
 #include "bem/operators/panel_arrays.hpp"
 #include "bem/quadrature/panel_integrals.hpp"
+#include "bem/quadrature/polar_quadrature.hpp"
 #include "linalg/vector_exponential.hpp"
 #include "bem/kernels/yukawa_kernel.hpp"
 #include "geometry/primitive_meshes.hpp"
+#include "geometry/surface_mesh.hpp"
 
 namespace {
 
@@ -109,6 +112,36 @@ void measure_rule(const char* name, const Kernel& kernel, const bem::TriangleRul
               1e9 * seconds / (double(repeats) * double(targets.size()) * rule.size()), checksum);
 }
 
+/// Microseconds per call of the Yukawa polar scheme, values only, on a panel 11/κ across
+/// (12 × 10, κ = 0.875: a wall-reading element of plate_holes) for 4,000 targets spread over
+/// the panel and up to 6 beside it and 8 above or below it, at the resolution for `accuracy`.
+void measure_polar(double accuracy) {
+  Eigen::MatrixX3d vertices(3, 3);
+  vertices << 0, 0, 0, 12, 0, 0, 4, 10, 0;
+  Eigen::MatrixX3i faces(1, 3);
+  faces << 0, 1, 2;
+  const bem::Panel panel = bem::make_panels(geometry::SurfaceMesh(vertices, faces))[0];
+  const bem::YukawaKernel kernel{0.875};
+  const bem::PolarResolution resolution = bem::PolarResolution::for_accuracy(accuracy);
+  std::vector<Eigen::Vector3d> targets;
+  for (int i = 0; i < 4000; ++i) {
+    // A deterministic scatter (golden-ratio sequences) over [−6, 18] × [−4.8, 14.4] × [0.2, 8].
+    const double a = std::fmod(0.6180339887 * i, 1.0), b = std::fmod(0.7548776662 * i, 1.0);
+    const double c = std::fmod(0.5698402910 * i, 1.0);
+    targets.emplace_back(-6.0 + 24.0 * a, 0.8 * (-6.0 + 24.0 * b), (i % 2 ? 1 : -1) * (0.2 + 7.8 * c));
+  }
+  constexpr int repeats = 50;
+  double checksum = 0.0;
+  const auto start = Clock::now();
+  for (int r = 0; r < repeats; ++r)
+    for (const Eigen::Vector3d& x : targets)
+      checksum += bem::polar_panel_integrals(kernel, panel, x, false, resolution).single_layer;
+  const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  std::printf("Yukawa polar scheme, accuracy %-7.0e %2d points per piece  %6.3f us per call  (checksum %.12g)\n",
+              accuracy, resolution.points_per_piece,
+              1e6 * seconds / (double(repeats) * double(targets.size())), checksum);
+}
+
 /// Nanoseconds per entry of e^x over arrays of 64 arguments in [−30, 0].
 template <class Exponential>
 void measure_exponential(const char* name, Exponential&& exponential) {
@@ -160,5 +193,6 @@ int main(int argc, char** argv) {
   });
   measure_exponential("e^x, Eigen exp",
                       [](const auto& x) { return Eigen::Array<double, 64, 1>(x.exp()); });
+  for (const double accuracy : {1e-10, 1e-7, 1e-5, 1e-3}) measure_polar(accuracy);
   return 0;
 }

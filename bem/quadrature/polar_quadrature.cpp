@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <numbers>
-#include <vector>
 
 #include "bem/quadrature/gauss_legendre.hpp"
 #include "bem/kernels/laplace_kernel.hpp"
@@ -76,31 +76,13 @@ void graded_gauss(int points_per_piece, double start, double end, double w0, Vis
   }
 }
 
-/// The nodes and weights of graded_gauss, collected for evaluation as arrays.
-struct GradedNodes {
-  std::vector<double> nodes, weights;
-  void clear() {
-    nodes.clear();
-    weights.clear();
-  }
-  template <class Stop>
-  void append(int points_per_piece, double start, double end, double w0, Stop&& stop) {
-    graded_gauss(
-        points_per_piece, start, end, w0,
-        [&](double s, double w) {
-          nodes.push_back(s);
-          weights.push_back(w);
-        },
-        stop);
-  }
-};
-
 /// Edge P1 → P2 in plane coordinates centred at x': unit direction u, foot of the
 /// perpendicular F = P1 − t1 u, abscissae t1 < t2 of the ends, distance p = |F| and the
 /// orientation σ of the triangle (x', P1, P2).
 struct EdgeFrame {
   Vec2 foot, u;
   double p = 0, sigma = 0, t1 = 0, t2 = 0;
+  double v1 = 0, v2 = 0;  ///< asinh(t1/p), asinh(t2/p)
 };
 
 /// Radial tails of the Yukawa in-plane gradients, for d ≠ 0 (variable ρ = |d| sinh u):
@@ -183,6 +165,22 @@ PanelIntegrals polar_panel_integrals(const Kernel& kernel, const Panel& panel,
     if (h < -tol) outside = true;
     if (h <= tol) inside = false;
   }
+  {
+    // v = asinh(t/p) = sign(t)·log(|t|/p + √((t/p)² + 1)) for the six ends, in one vector log.
+    Eigen::Array<double, 8, 1> a = Eigen::Array<double, 8, 1>::Ones();
+    for (size_t e = 0; e < 3; ++e) {
+      const EdgeFrame& E = edges[e];
+      if (E.p <= tol) continue;
+      const double s1 = std::abs(E.t1) / E.p, s2 = std::abs(E.t2) / E.p;
+      a(Eigen::Index(2 * e)) = s1 + std::sqrt(s1 * s1 + 1.0);
+      a(Eigen::Index(2 * e + 1)) = s2 + std::sqrt(s2 * s2 + 1.0);
+    }
+    const Eigen::Array<double, 8, 1> l = a.log();
+    for (size_t e = 0; e < 3; ++e) {
+      edges[e].v1 = std::copysign(l(Eigen::Index(2 * e)), edges[e].t1);
+      edges[e].v2 = std::copysign(l(Eigen::Index(2 * e + 1)), edges[e].t2);
+    }
+  }
   // q: in-plane distance from x' to T (0 unless x' is outside); c = distance from x to T.
   double q2 = 0.0;
   if (outside) {
@@ -251,65 +249,94 @@ PanelIntegrals polar_panel_integrals(const Kernel& kernel, const Panel& panel,
       if constexpr (!yukawa) {
         return max_piece_width;
       } else {
-        const double ch = std::cosh(vs);
+        // cosh, sinh and cosh 2v = 2cosh² − 1 from one exponential (vs = 0 at most starts).
+        const double e = vs == 0.0 ? 1.0 : std::exp(vs);
+        const double ch = 0.5 * (e + 1.0 / e), sh = 0.5 * (e - 1.0 / e);
         const double rho_s = length2d(p * ch, d);
-        const double a1 = kappa * p * p * std::abs(std::sinh(vs)) * ch / rho_s;
-        const double a2 = kappa * p * p * std::cosh(2.0 * vs) / rho_s;
+        const double a1 = kappa * p * p * std::abs(sh) * ch / rho_s;
+        const double a2 = kappa * p * p * (2.0 * ch * ch - 1.0) / rho_s;
         return 1.0 / (a1 + std::sqrt(a2));
       }
     };
-    auto negligible = [&](double vs) {
-      if (!split) return false;
-      const double R = p * std::cosh(vs);
-      const double delta = (R * R - q2) / (length2d(R, d) + c);
-      return kappa * delta > resolution.negligible_exponent;
-    };
-    const double v1 = std::asinh(E.t1 / p), v2 = std::asinh(E.t2 / p);
-    thread_local GradedNodes graded;
-    graded.clear();
-    const int n = resolution.points_per_piece;
-    if (v1 < 0.0 && v2 > 0.0) {
-      graded.append(n, 0.0, v2, first_width(0.0), negligible);
-      graded.append(n, 0.0, v1, first_width(0.0), negligible);
-    } else if (v1 >= 0.0) {
-      graded.append(n, v1, v2, first_width(v1), negligible);
-    } else {
-      graded.append(n, v2, v1, first_width(v2), negligible);
+    // κδ grows with |v| away from the nearest point of the edge's line: it exceeds the
+    // negligible exponent E beyond |v| = v_stop, cosh v_stop = √((c + E/κ)² − d²)/p.
+    double v_stop = std::numeric_limits<double>::infinity();
+    if (split) {
+      const double reach = c + resolution.negligible_exponent / kappa;
+      const double ratio = std::sqrt(std::max(0.0, reach * reach - d * d)) / p;
+      v_stop = ratio <= 1.0 ? 0.0 : std::acosh(ratio);
     }
-    if (with_gradients)
-      for (size_t i = 0; i < graded.nodes.size(); ++i)
-        visit_gradients(graded.nodes[i], graded.weights[i]);
-    // The values, over arrays of nodes, so that the exponentials, square roots and divisions
-    // use the SIMD width.
-    constexpr Eigen::Index chunk = 128;
-    using Chunk = Eigen::Array<double, Eigen::Dynamic, 1, 0, chunk, 1>;
-    const auto count = static_cast<Eigen::Index>(graded.nodes.size());
-    for (Eigen::Index begin = 0; begin < count; begin += chunk) {
-      const Eigen::Index m = std::min(chunk, count - begin);
-      const Eigen::Map<const Eigen::ArrayXd> v(graded.nodes.data() + begin, m);
-      const Eigen::Map<const Eigen::ArrayXd> w(graded.weights.data() + begin, m);
-      const Chunk ev = linalg::vector_exp<Chunk>(v);
-      const Chunk ch = 0.5 * (ev + ev.inverse());  // cosh v
-      const Chunk R = p * ch;
-      const Chunk rho = (R.square() + d * d).sqrt();
-      const Chunk dtheta = (E.sigma * w) / ch;
-      // δ = ρ' − c without cancellation (ρ'² − c² = R² − q²).
-      const Chunk delta = (R.square() - q2) / (rho + c);
-      if constexpr (!yukawa) {
-        sl += (dtheta * delta).sum();
-        dl += d_over_c * (dtheta * delta / rho).sum();
-      } else if (split) {
-        const Chunk e = exp_c * linalg::vector_exp<Chunk>(-kappa * delta);
-        sl -= (dtheta * e).sum() / kappa;
-        dl -= d * (dtheta * e / rho).sum();
-      } else {
-        const Chunk em = -(-kappa * delta).expm1();
-        // Held as an array before the sum: with AVX2 (no AVX-512), GCC 12 warns that the fused
-        // reduction of dtheta * em may read em uninitialized; the values are the same.
-        const Chunk weighted = dtheta * em;
-        sl += exp_c / kappa * weighted.sum();
-        dl += d_over_c * exp_c * (dtheta * (delta + c * em) / rho).sum();
+    auto negligible = [&](double vs) { return std::abs(vs) > v_stop; };
+    const double v1 = E.v1, v2 = E.v2;
+    const int n = resolution.points_per_piece;
+    // The values, eight nodes at a time, so that the exponentials, square roots and divisions
+    // use the SIMD width; the nodes wait in a buffer of whole lanes.
+    constexpr int lanes = 8;
+    using Lanes = Eigen::Array<double, lanes, 1>;
+    constexpr int capacity = 64;
+    alignas(64) std::array<double, capacity> buffer_v, buffer_w;
+    int buffered = 0;
+    Lanes acc_sl = Lanes::Zero(), acc_dl = Lanes::Zero();
+    const auto evaluate = [&] {
+      // Pad to whole lanes with weight 0 at the last node.
+      for (; buffered % lanes != 0; ++buffered) {
+        buffer_v[size_t(buffered)] = buffer_v[size_t(buffered - 1)];
+        buffer_w[size_t(buffered)] = 0.0;
       }
+      for (int begin = 0; begin < buffered; begin += lanes) {
+        const Lanes v = Eigen::Map<const Lanes, Eigen::Aligned64>(buffer_v.data() + begin);
+        const Lanes w = Eigen::Map<const Lanes, Eigen::Aligned64>(buffer_w.data() + begin);
+        const Lanes ev = linalg::vector_exp<Lanes>(v);
+        const Lanes ch = 0.5 * (ev + ev.inverse());  // cosh v
+        const Lanes R = p * ch;
+        const Lanes rho = (R.square() + d * d).sqrt();
+        const Lanes dtheta = (E.sigma * w) / ch;
+        if constexpr (yukawa) {
+          if (split) {
+            // e^{−κρ'} directly: the rounding of ρ' − c is far below 1/κ.
+            const Lanes e = linalg::vector_exp<Lanes>(-kappa * rho) * dtheta;
+            acc_sl += e;
+            acc_dl += e / rho;
+            continue;
+          }
+        }
+        // δ = ρ' − c without cancellation (ρ'² − c² = R² − q²).
+        const Lanes delta = (R.square() - q2) / (rho + c);
+        if constexpr (!yukawa) {
+          acc_sl += dtheta * delta;
+          acc_dl += d_over_c * (dtheta * delta / rho);
+        } else {
+          const Lanes em = -(-kappa * delta).expm1();
+          acc_sl += exp_c / kappa * (dtheta * em);
+          acc_dl += d_over_c * exp_c * (dtheta * (delta + c * em) / rho);
+        }
+      }
+      buffered = 0;
+    };
+    const auto visit = [&](double v, double w) {
+      if (with_gradients) visit_gradients(v, w);
+      buffer_v[size_t(buffered)] = v;
+      buffer_w[size_t(buffered)] = w;
+      if (++buffered == capacity) evaluate();
+    };
+    const auto walk = [&](double start, double end) {
+      graded_gauss(n, start, end, first_width(start), visit, negligible);
+    };
+    if (v1 < 0.0 && v2 > 0.0) {
+      walk(0.0, v2);
+      walk(0.0, v1);
+    } else if (v1 >= 0.0) {
+      walk(v1, v2);
+    } else {
+      walk(v2, v1);
+    }
+    if (buffered > 0) evaluate();
+    if (yukawa && split) {
+      sl -= acc_sl.sum() / kappa;
+      dl -= d * acc_dl.sum();
+    } else {
+      sl += acc_sl.sum();
+      dl += acc_dl.sum();
     }
   }
   if constexpr (yukawa) {
@@ -317,7 +344,7 @@ PanelIntegrals polar_panel_integrals(const Kernel& kernel, const Panel& panel,
       sl += exp_c * theta / kappa;
       dl += d_over_c * exp_c * theta;
     }
-    g_dl_normal -= kappa * std::exp(-kappa * abs_d) * theta;
+    if (with_gradients) g_dl_normal -= kappa * std::exp(-kappa * abs_d) * theta;
   }
   if (with_gradients && edge_skipped && d != 0.0) {
     // The dropped constants: −log|d| (Laplace SL), 1/d (Laplace DL), the full radial
