@@ -79,7 +79,7 @@ namespace detail {
 /// e^x of every entry of `x` (an Eigen array expression of doubles), as the plain array
 /// type `Array`.
 template <class Array, class Expression>
-Array vector_exp(const Expression& x) {
+[[gnu::always_inline]] inline Array vector_exp(const Expression& x) {
 #if defined(BEMSHAPE_VECTOR_EXPONENTIAL_AVX2)
   Array out = x;
   const Eigen::Index n = out.size();

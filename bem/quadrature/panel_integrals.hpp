@@ -129,13 +129,19 @@ template <class Kernel, class Array>
 
 /// The RadialSums of `rule` on a panel for a target at offset `a` = x − corner 0 from the
 /// panel's first corner, the points being y_q − corner 0 = ξ_q e1 + η_q e2: kRulePointLanes
-/// points at a time in fixed-size arrays (one AVX2 register of doubles), each group's
-/// distance, kernel terms and weighted sums in registers; a last partial group repeats the
-/// rule's last point with weight 0. Against whole-rule arrays (every operation a pass over
-/// the rule's values in memory) and Eigen's exponential, this and linalg/vector_exponential.hpp
-/// take the 64-point rule from 2.8 to 1.7 ns per point for Laplace and from 6.2 to 4.6 for
-/// Yukawa (2-core Zen 3, `bench_panel_integrals`; docs/benchmarks.md, "Panel integrals").
+/// points at a time in fixed-size arrays (one register of doubles: 4 with AVX2, 8 with
+/// AVX-512), each group's distance, kernel terms and weighted sums in registers; a last
+/// partial group repeats the rule's last point with weight 0. Against whole-rule arrays (every
+/// operation a pass over the rule's values in memory) and Eigen's exponential, this and
+/// linalg/vector_exponential.hpp take the 64-point rule from 2.8 to 1.7 ns per point for
+/// Laplace and from 6.2 to 4.6 for Yukawa (2-core Zen 3, `bench_panel_integrals`); eight lanes
+/// on the AVX-512 family-26 EPYC take it from 0.9 to 0.55 and from 4.3 to 2.6 ns
+/// (docs/benchmarks.md, "Panel integrals").
+#if defined(__AVX512F__)
+inline constexpr int kRulePointLanes = 8;
+#else
 inline constexpr int kRulePointLanes = 4;
+#endif
 template <class Kernel>
 RadialSums gauss_radial_sums(const Kernel& kernel, const Eigen::Vector3d& a,
                              const Eigen::Vector3d& e1, const Eigen::Vector3d& e2,
