@@ -66,6 +66,8 @@
 #include "analysis/thickness_statistics.hpp"
 #include "apps/output/stl_writer.hpp"
 #include "core/errors.hpp"
+#include "core/heap_retention.hpp"
+#include "core/huge_pages.hpp"
 #include "geometry/closest_point.hpp"
 #include "geometry/mesh_preparation.hpp"
 #include "tests/support/labelled_parts.hpp"
@@ -486,6 +488,12 @@ void print_profile(const std::string& part, const Score& s) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // The allocator settings of the bemshape executable (apps/main.cpp), so that every tool runs
+  // as a user's process would: 2 MB heap pages, freed memory kept for reuse. The tools' runs are
+  // children of this process and inherit them.
+  bemshape::restart_with_heap_huge_pages(argv);
+  bemshape::retain_freed_heap_memory();
+  bemshape::pad_heap_growth();
   std::vector<std::string> names, tools{"bemshape", "ray", "sdf", "sphere"};
   std::vector<double> noises;
   std::uint64_t seed = 1;
