@@ -82,7 +82,10 @@ void graded_gauss(int points_per_piece, double start, double end, double w0, Vis
 struct EdgeFrame {
   Vec2 foot, u;
   double p = 0, sigma = 0, t1 = 0, t2 = 0;
+  double s1 = 0, s2 = 0;  ///< t1/p, t2/p: sinh of the ends' v
   double v1 = 0, v2 = 0;  ///< asinh(t1/p), asinh(t2/p)
+  /// |v| beyond which the Yukawa pieces are negligible (infinity where they are not cut off).
+  double v_stop = 0;
 };
 
 /// Radial tails of the Yukawa in-plane gradients, for d ≠ 0 (variable ρ = |d| sinh u):
@@ -165,22 +168,6 @@ PanelIntegrals polar_panel_integrals(const Kernel& kernel, const Panel& panel,
     if (h < -tol) outside = true;
     if (h <= tol) inside = false;
   }
-  {
-    // v = asinh(t/p) = sign(t)·log(|t|/p + √((t/p)² + 1)) for the six ends, in one vector log.
-    Eigen::Array<double, 8, 1> a = Eigen::Array<double, 8, 1>::Ones();
-    for (size_t e = 0; e < 3; ++e) {
-      const EdgeFrame& E = edges[e];
-      if (E.p <= tol) continue;
-      const double s1 = std::abs(E.t1) / E.p, s2 = std::abs(E.t2) / E.p;
-      a(Eigen::Index(2 * e)) = s1 + std::sqrt(s1 * s1 + 1.0);
-      a(Eigen::Index(2 * e + 1)) = s2 + std::sqrt(s2 * s2 + 1.0);
-    }
-    const Eigen::Array<double, 8, 1> l = a.log();
-    for (size_t e = 0; e < 3; ++e) {
-      edges[e].v1 = std::copysign(l(Eigen::Index(2 * e)), edges[e].t1);
-      edges[e].v2 = std::copysign(l(Eigen::Index(2 * e + 1)), edges[e].t2);
-    }
-  }
   // q: in-plane distance from x' to T (0 unless x' is outside); c = distance from x to T.
   double q2 = 0.0;
   if (outside) {
@@ -205,6 +192,35 @@ PanelIntegrals polar_panel_integrals(const Kernel& kernel, const Panel& panel,
   const bool split = yukawa && kappa * (rho_max - c) > split_exponent;
   const double exp_c = yukawa ? std::exp(-kappa * c) : 1.0;
   const double d_over_c = d == 0.0 ? 0.0 : d / c;
+  // v = asinh(t/p) = sign(t)·log(|t|/p + √((t/p)² + 1)) for the six ends and, where the
+  // Yukawa pieces are cut off, v_stop = acosh(r) = log(r + √(r² − 1)) for each edge, r =
+  // √((c + E/κ)² − d²)/p: κδ grows with |v| away from the nearest point of the edge's line
+  // and exceeds the negligible exponent E beyond |v| = v_stop. One vector logarithm for all.
+  {
+    using Logs = Eigen::Array<double, 16, 1>;
+    Logs a = Logs::Ones();
+    const double reach = split ? c + resolution.negligible_exponent / kappa : 0.0;
+    const double reach_in_plane = split ? std::sqrt(std::max(0.0, reach * reach - d * d)) : 0.0;
+    for (size_t e = 0; e < 3; ++e) {
+      EdgeFrame& E = edges[e];
+      if (E.p <= tol) continue;
+      E.s1 = E.t1 / E.p;
+      E.s2 = E.t2 / E.p;
+      a(Eigen::Index(2 * e)) = std::abs(E.s1) + std::sqrt(E.s1 * E.s1 + 1.0);
+      a(Eigen::Index(2 * e + 1)) = std::abs(E.s2) + std::sqrt(E.s2 * E.s2 + 1.0);
+      if (split) {
+        const double r = reach_in_plane / E.p;
+        a(Eigen::Index(6 + e)) = r <= 1.0 ? 1.0 : r + std::sqrt(r * r - 1.0);
+      }
+    }
+    const Logs l = a.log();
+    for (size_t e = 0; e < 3; ++e) {
+      EdgeFrame& E = edges[e];
+      E.v1 = std::copysign(l(Eigen::Index(2 * e)), E.t1);
+      E.v2 = std::copysign(l(Eigen::Index(2 * e + 1)), E.t2);
+      E.v_stop = split ? l(Eigen::Index(6 + e)) : std::numeric_limits<double>::infinity();
+    }
+  }
 
   double sl = 0.0, dl = 0.0, g_dl_normal = 0.0;
   Vec2 g_sl = Vec2::Zero(), g_dl = Vec2::Zero();
@@ -245,28 +261,19 @@ PanelIntegrals polar_panel_integrals(const Kernel& kernel, const Panel& panel,
         if (d != 0.0) g_dl -= dtheta * (std::copysign(1.0, d) / abs_d) * t_dl * dir;
       }
     };
-    auto first_width = [&](double vs) {
+    // The first piece's width at a start v_s given by sh = sinh v_s (0, t1/p or t2/p).
+    auto first_width = [&](double sh) {
       if constexpr (!yukawa) {
         return max_piece_width;
       } else {
-        // cosh, sinh and cosh 2v = 2cosh² − 1 from one exponential (vs = 0 at most starts).
-        const double e = vs == 0.0 ? 1.0 : std::exp(vs);
-        const double ch = 0.5 * (e + 1.0 / e), sh = 0.5 * (e - 1.0 / e);
+        const double ch = std::sqrt(1.0 + sh * sh);  // cosh v_s; cosh 2v_s = 2cosh² − 1
         const double rho_s = length2d(p * ch, d);
         const double a1 = kappa * p * p * std::abs(sh) * ch / rho_s;
         const double a2 = kappa * p * p * (2.0 * ch * ch - 1.0) / rho_s;
         return 1.0 / (a1 + std::sqrt(a2));
       }
     };
-    // κδ grows with |v| away from the nearest point of the edge's line: it exceeds the
-    // negligible exponent E beyond |v| = v_stop, cosh v_stop = √((c + E/κ)² − d²)/p.
-    double v_stop = std::numeric_limits<double>::infinity();
-    if (split) {
-      const double reach = c + resolution.negligible_exponent / kappa;
-      const double ratio = std::sqrt(std::max(0.0, reach * reach - d * d)) / p;
-      v_stop = ratio <= 1.0 ? 0.0 : std::acosh(ratio);
-    }
-    auto negligible = [&](double vs) { return std::abs(vs) > v_stop; };
+    auto negligible = [&](double vs) { return std::abs(vs) > E.v_stop; };
     const double v1 = E.v1, v2 = E.v2;
     const int n = resolution.points_per_piece;
     // The values, eight nodes at a time, so that the exponentials, square roots and divisions
@@ -319,16 +326,16 @@ PanelIntegrals polar_panel_integrals(const Kernel& kernel, const Panel& panel,
       buffer_w[size_t(buffered)] = w;
       if (++buffered == capacity) evaluate();
     };
-    const auto walk = [&](double start, double end) {
-      graded_gauss(n, start, end, first_width(start), visit, negligible);
+    const auto walk = [&](double start, double end, double sinh_start) {
+      graded_gauss(n, start, end, first_width(sinh_start), visit, negligible);
     };
     if (v1 < 0.0 && v2 > 0.0) {
-      walk(0.0, v2);
-      walk(0.0, v1);
+      walk(0.0, v2, 0.0);
+      walk(0.0, v1, 0.0);
     } else if (v1 >= 0.0) {
-      walk(v1, v2);
+      walk(v1, v2, E.s1);
     } else {
-      walk(v2, v1);
+      walk(v2, v1, E.s2);
     }
     if (buffered > 0) evaluate();
     if (yukawa && split) {
