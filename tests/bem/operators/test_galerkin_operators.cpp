@@ -4,6 +4,9 @@
 
 #include <Eigen/Geometry>
 
+#include <numbers>
+#include <vector>
+
 #include "bem/operators/galerkin_operators.hpp"
 #include "bem/kernels/laplace_kernel.hpp"
 #include "bem/quadrature/panel.hpp"
@@ -91,6 +94,73 @@ TEST_CASE("Yukawa single layer on a flat panel at kappa*diameter 21 (the 6-point
   // κ = 150: panels 21/κ across, whose near pairs that do not touch take the 6-point outer
   // rule (GalerkinOperators::near_outer_rule).
   check_plane_row_sums(150.0, 1e-7, 12.0);
+}
+
+TEST_CASE("Yukawa near pairs: a small test panel a gap of 1-6 diameters from a large trial "
+          "panel takes the fewer outer points of near_outer_rule(test, trial)") {
+  // A trial panel about 1 across and a test panel 0.5 across (κ·diameter 4-8 for the test panel,
+  // where the rule of near_outer_rule(test) alone has 12 points), beside the trial panel in its
+  // plane and tilted above it, at gaps g of 1-6 test diameters. The reference: the 12-point
+  // rule on 16 sub-triangles. Errors against the unattenuated magnitudes |T_j||T_k|/(4πr) (V)
+  // and |T_j||T_k|(1 + κr)/(4πr²) (K), r the distance of the centroids (YukawaAttenuation).
+  const Panel trial = make_panel(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0, 0),
+                                 Eigen::Vector3d(0.3, 0.9, 0));
+  const auto small_panel = [](const Eigen::Vector3d& centre, const Eigen::Vector3d& normal) {
+    const Eigen::Vector3d u = normal.unitOrthogonal(), w = normal.normalized().cross(u);
+    const double r = 0.5 / std::sqrt(3.0);  // circumradius of an equilateral triangle of side 0.5
+    return make_panel(centre + r * u, centre + r * (-0.5 * u + 0.866025403784 * w),
+                      centre + r * (-0.5 * u - 0.866025403784 * w));
+  };
+  const std::vector<Panel> panels{trial};
+  double worst = 0.0, worst_three_point_near = 0.0;
+  int checked = 0;
+  for (const double kappa : {8.0, 12.0, 16.0}) {
+    const GalerkinOperators op(YukawaKernel{kappa}, panels);
+    for (const double gap_in_diameters : {1.0, 1.5, 2.0, 3.0, 4.0, 6.0}) {
+      for (int placement = 0; placement < 2; ++placement) {
+        // Beside the edge from (1, 0) to (0.3, 0.9) in the plane, or above the panel, tilted.
+        const Eigen::Vector3d out = Eigen::Vector3d(0.9, 0.7, 0).normalized();
+        const Eigen::Vector3d foot = placement == 0 ? Eigen::Vector3d(0.65, 0.45, 0)
+                                                    : Eigen::Vector3d(0.45, 0.3, 0);
+        const Eigen::Vector3d direction = placement == 0 ? out : Eigen::Vector3d(0.2, 0.1, 1).normalized();
+        const Eigen::Vector3d normal = placement == 0 ? Eigen::Vector3d(0, 0, 1)
+                                                      : Eigen::Vector3d(1, -0.5, 0.7);
+        Panel test = small_panel(foot, normal);
+        // Move the test panel out until its gap, as near_outer_rule measures it, is reached.
+        const double target = gap_in_diameters * test.diameter;
+        for (int it = 0; it < 60; ++it) {
+          const double gap = distance_to_panel(trial, test.centroid) - test.radius;
+          if (std::abs(gap - target) < 1e-9) break;
+          test = small_panel(test.centroid + (target - gap) * direction, normal);
+        }
+        if (GalerkinOperators<YukawaKernel>::separation_ratio(test, trial) >=
+            OuterRuleThresholds::near_ratio)
+          continue;
+        const double r = (test.centroid - trial.centroid).norm();
+        const double v_scale = test.area * trial.area / (4.0 * std::numbers::pi * r);
+        const double k_scale = v_scale * (1.0 + kappa * r) / r;
+        const auto ref = op.outer_rule_entry(test, trial, 2, symmetric_triangle_rule(6));
+        const auto e = op.outer_rule_entry(test, trial, 0, op.near_outer_rule(test, trial));
+        const double error = std::max(std::abs(e.single_layer - ref.single_layer) / v_scale,
+                                      std::abs(e.double_layer - ref.double_layer) / k_scale);
+        CAPTURE(kappa, gap_in_diameters, placement, error);
+        CHECK(error < 1e-6);
+        worst = std::max(worst, error);
+        ++checked;
+        if (gap_in_diameters == 1.0) {
+          const auto three = op.outer_rule_entry(test, trial, 0, symmetric_triangle_rule(2));
+          worst_three_point_near =
+              std::max({worst_three_point_near,
+                        std::abs(three.single_layer - ref.single_layer) / v_scale,
+                        std::abs(three.double_layer - ref.double_layer) / k_scale});
+        }
+      }
+    }
+  }
+  CAPTURE(worst, worst_three_point_near);
+  CHECK(checked >= 24);
+  // The check can fail: the 3-point rule at one diameter is far outside it.
+  CHECK(worst_three_point_near > 1e-5);
 }
 
 TEST_CASE("Galerkin entries are invariant under rotation and translation") {
