@@ -68,6 +68,7 @@
 #include "core/errors.hpp"
 #include "core/heap_retention.hpp"
 #include "core/huge_pages.hpp"
+#include "core/memory.hpp"
 #include "geometry/closest_point.hpp"
 #include "geometry/mesh_preparation.hpp"
 #include "tests/support/labelled_parts.hpp"
@@ -388,9 +389,12 @@ int run_tool(const std::string& tool, const std::string& name, const std::string
     s.seconds = seconds_since(start);
     score(spec, mesh, thickness, nullptr, s);
   }
+  // The peak of this process image (VmHWM): the rusage the parent gets also counts, from
+  // before the exec, the parent's pages this child shared when it was forked.
   std::printf("seconds %.17g faces %ld median %.17g p05 %.17g p95 %.17g low %.17g regions %d "
-              "thick %d",
-              s.seconds, s.faces, s.median, s.p05, s.p95, s.low, s.regions, s.thick_found);
+              "thick %d peak_mb %.17g",
+              s.seconds, s.faces, s.median, s.p05, s.p95, s.low, s.regions, s.thick_found,
+              double(peak_resident_bytes()) / (1024.0 * 1024.0));
   for (std::size_t k = 0; k < s.thin_flagged.size(); ++k)
     if (std::isfinite(s.thin_flagged[k]))
       std::printf(" thin%zu %.17g thin_regions%zu %d", k, s.thin_flagged[k], k, s.thin_regions[k]);
@@ -404,7 +408,7 @@ int run_tool(const std::string& tool, const std::string& name, const std::string
 }
 
 /// Runs this program with --run in a child process; parses its line; the peak resident
-/// memory from the child's resource usage.
+/// memory the child reports (VmHWM), else its resource usage.
 Score run_child(const std::string& self, const std::string& tool, const std::string& name,
                 const std::string& file, long min_faces, int threads) {
   int fds[2];
@@ -440,6 +444,7 @@ Score run_child(const std::string& self, const std::string& tool, const std::str
   std::map<std::string, double> fields;
   while (in >> key >> value) fields[key] = value;
   s.seconds = fields["seconds"];
+  if (fields.count("peak_mb") && fields["peak_mb"] > 0.0) s.peak_mb = fields["peak_mb"];
   s.faces = long(fields["faces"]);
   s.median = fields["median"];
   s.p05 = fields["p05"];
@@ -488,12 +493,14 @@ void print_profile(const std::string& part, const Score& s) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  // The allocator settings of the bemshape executable (apps/main.cpp), so that every tool runs
-  // as a user's process would: 2 MB heap pages, freed memory kept for reuse. The tools' runs are
-  // children of this process and inherit them.
-  bemshape::restart_with_heap_huge_pages(argv);
-  bemshape::retain_freed_heap_memory();
-  bemshape::pad_heap_growth();
+  // A tool's run (--run, a child of this process) takes the allocator settings of the bemshape
+  // executable (apps/main.cpp), so that it runs as a user's process would: 2 MB heap pages,
+  // freed memory kept for reuse. Not the parent, which would only hold its freed pages longer.
+  if (std::any_of(argv + 1, argv + argc, [](const char* a) { return std::strcmp(a, "--run") == 0; })) {
+    bemshape::restart_with_heap_huge_pages(argv);
+    bemshape::retain_freed_heap_memory();
+    bemshape::pad_heap_growth();
+  }
   std::vector<std::string> names, tools{"bemshape", "ray", "sdf", "sphere"};
   std::vector<double> noises;
   std::uint64_t seed = 1;
