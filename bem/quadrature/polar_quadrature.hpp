@@ -54,8 +54,9 @@ struct PolarResolution {
 };
 
 /// Panel integrals by the polar scheme, valid for every target (used for targets near or on
-/// the panel: cost ~ 100–300 kernel evaluations, more for gradients). `resolution` applies to
-/// the values; gradients are always at full accuracy.
+/// the panel: ~40–300 kernel evaluations, eight at a time, more for gradients;
+/// docs/quadrature.md, "Throughput"). `resolution` applies to the values; gradients are always
+/// at full accuracy.
 /// Kernel ∈ {LaplaceKernel, YukawaKernel} (explicitly instantiated).
 template <class Kernel>
 PanelIntegrals polar_panel_integrals(const Kernel& kernel, const Panel& panel,
