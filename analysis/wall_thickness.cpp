@@ -213,9 +213,13 @@ WallThickness wall_thickness(const geometry::SurfaceMesh& mesh,
   {
     bem::LaplaceTreecode::Workspace workspace = treecode.workspace();
     bem::TreecodeCounts counts;
+    // Faces in cluster-tree order: consecutive searches of a thread lie close together and
+    // visit the same clusters, whose moments then stay in the cache.
+    const auto& order = tree.permutation();
 #pragma omp for schedule(dynamic, 16)
-    for (Eigen::Index f = 0; f < nf; ++f) {
+    for (Eigen::Index t = 0; t < nf; ++t) {
       if (cancellation_requested()) continue;
+      const Eigen::Index f = order[std::size_t(t)];
       const Eigen::Vector3d x = mesh.face_centroids().row(f).transpose();
       const Eigen::Vector3d n = mesh.face_normals().row(f).transpose();
       Eigen::Vector3d s0 = Eigen::Vector3d::Zero();
