@@ -19,6 +19,7 @@
 
 #include <array>
 #include <cstddef>
+#include <span>
 
 #include <Eigen/Core>
 
@@ -125,19 +126,19 @@ inline FarFieldEntries laplace_far_field_rule(const PanelLanes& test, const Pane
 /// `far_ratio` times the larger diameter apart (the caller passes
 /// OuterRuleThresholds::far_ratio; closer pairs need GalerkinOperators::entry's outer rules).
 /// Returns the lanes computed as a bit mask (bit l for lane l). Each lane gets the rule
-/// integrate_panel selects for it (the first row of far_field_rules() it qualifies for, on
-/// squared distances as select_far_field_rule_squared, κ·diameter = 0): one SIMD pass per
-/// distinct rule among the lanes, usually one, two where a row of trial panels crosses a
-/// threshold.
+/// integrate_panel selects for it from `rows` (far_field_rules() or its single-precision
+/// table: the first row it qualifies for, on squared distances as
+/// select_far_field_rule_squared, κ·diameter = 0): one SIMD pass per distinct rule among the
+/// lanes, usually one, two where a row of trial panels crosses a threshold.
 inline unsigned laplace_far_field_lanes(const PanelLanes& test, const PanelLanes& trial,
-                                        double far_ratio, FarFieldEntries& out) {
+                                        double far_ratio, FarFieldEntries& out,
+                                        std::span<const FarFieldRule> rows = far_field_rules()) {
   const FarFieldLanes dx = test.centroid[0] - trial.centroid[0];
   const FarFieldLanes dy = test.centroid[1] - trial.centroid[1];
   const FarFieldLanes dz = test.centroid[2] - trial.centroid[2];
   const FarFieldLanes distance2 = dx.square() + dy.square() + dz.square();
   const FarFieldLanes trial_diameter2 = trial.diameter.square();
   // Row index per lane, −1 where no row applies or the pair is not in the far field.
-  const auto& rows = far_field_rules();
   FarFieldLanes row = FarFieldLanes::Constant(-1.0);
   for (int r = static_cast<int>(rows.size()) - 1; r >= 0; --r)
     row = (distance2 >= rows[static_cast<std::size_t>(r)].min_ratio_squared() * trial_diameter2)

@@ -26,9 +26,12 @@ class GalerkinBlockGenerator final : public OperatorBlockGenerator {
  public:
   /// The operators of `kernel` on `panels` (one per mesh face) in the order `faces`: the
   /// face at each position (kept by reference; e.g. ClusterTree::permutation()).
+  /// `single_precision`: the entries are stored in single precision, and the Laplace panel
+  /// integrals need only kSinglePrecisionRuleAccuracy (GalerkinOperators::set_laplace_accuracy).
   GalerkinBlockGenerator(Kernel kernel, const std::vector<Panel>& panels,
-                         const std::vector<Eigen::Index>& faces)
+                         const std::vector<Eigen::Index>& faces, bool single_precision = false)
       : ordered_(in_order(panels, faces)), operators_(kernel, ordered_, &faces) {
+    if (single_precision) operators_.set_laplace_accuracy(kSinglePrecisionRuleAccuracy);
     operators_.tabulate_touching_pairs();
   }
   int densities() const override { return 2; }

@@ -258,6 +258,12 @@ class GalerkinOperators {
   /// unless an assembly that stores its entries more coarsely asks for less.
   void set_polar_accuracy(double accuracy) { polar_accuracy_ = accuracy; }
 
+  /// The accuracy of the Laplace panel integrals at the outer rule points, relative to each
+  /// integral: 1e−8 (far_field_rules()), or from kSinglePrecisionRuleAccuracy on the cheaper
+  /// rules of an assembly that stores its entries in single precision
+  /// (far_field_rules(accuracy)). No effect on Yukawa.
+  void set_laplace_accuracy(double accuracy) { laplace_rules_ = far_field_rules(accuracy); }
+
   Entry entry(Eigen::Index row, Eigen::Index col) const {
     const Panel& test = (*panels_)[static_cast<size_t>(row)];
     const Panel& trial = (*panels_)[static_cast<size_t>(col)];
@@ -349,13 +355,13 @@ class GalerkinOperators {
 
   /// The trial panel's single and double layer at an outer rule point x: for Yukawa to
   /// YukawaAttenuation::absolute_accuracy of an unattenuated entry, its polar integrals to
-  /// set_polar_accuracy's (integrate_attenuated_panel), for Laplace to 1e−8 of the entry
-  /// (integrate_panel).
+  /// set_polar_accuracy's (integrate_attenuated_panel), for Laplace to 1e−8 of the entry or
+  /// set_laplace_accuracy's (integrate_panel).
   PanelIntegrals trial_integrals(const Panel& trial, const Eigen::Vector3d& x) const {
     if constexpr (Kernel::has_exponential_decay)
       return integrate_attenuated_panel(kernel_, trial, x, polar_accuracy_);
     else
-      return integrate_panel(kernel_, trial, x);
+      return integrate_panel(kernel_, trial, x, false, laplace_rules_);
   }
 
   /// The entry by `rule` on T_j split into 4^levels sub-triangles, times the panel integrals
@@ -567,7 +573,7 @@ class GalerkinOperators {
         Eigen::Index c = 0;
         for (; c + lanes <= n; c += lanes)
           store(laplace_far_field_lanes(test, PanelLanes::consecutive(arrays_, col_begin + c),
-                                        far_ratio, e),
+                                        far_ratio, e, laplace_rules_),
                 0, c, 0, 1);
         for (; c < n; ++c) one(0, c);
         return;
@@ -577,7 +583,7 @@ class GalerkinOperators {
         Eigen::Index r = 0;
         for (; r + lanes <= m; r += lanes)
           store(laplace_far_field_lanes(PanelLanes::consecutive(arrays_, row_begin + r), trial,
-                                        far_ratio, e),
+                                        far_ratio, e, laplace_rules_),
                 r, c, 1, 0);
         for (; r < m; ++r) one(r, c);
       }
@@ -595,6 +601,7 @@ class GalerkinOperators {
 
   Kernel kernel_;
   double polar_accuracy_ = YukawaAttenuation::absolute_accuracy;
+  std::span<const FarFieldRule> laplace_rules_ = far_field_rules();
   const std::vector<Panel>* panels_;
   const std::vector<Eigen::Index>* faces_;  ///< face number of each panel, or null: i
   PanelArrays arrays_;  ///< *panels_ as arrays, for fill_range and fill_row

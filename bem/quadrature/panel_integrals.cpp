@@ -18,6 +18,25 @@ const std::array<FarFieldRule, 7>& far_field_rules() {
   return table;
 }
 
+const std::array<FarFieldRule, 5>& single_precision_far_field_rules() {
+  // Measured worst errors at each row's smallest ratio (the calibration of far_field_rules(),
+  // values and gradients, three panel shapes, 43 directions; docs/quadrature.md): 7.5e−8,
+  // 4.8e−8, 4.2e−9, 2.6e−8 and 4.9e−8.
+  static const std::array<FarFieldRule, 5> table = {{
+      {60.0, 0.0, &symmetric_triangle_rule(2)},  // 3 points
+      {6.0, 0.0, &symmetric_triangle_rule(5)},   // 7 points
+      {4.0, 0.0, &symmetric_triangle_rule(6)},   // 12 points
+      {2.5, 0.0, &symmetric_triangle_rule(8)},   // 16 points
+      {1.5, 0.0, &collapsed_gauss_rule(6)},      // 36 points
+  }};
+  return table;
+}
+
+std::span<const FarFieldRule> far_field_rules(double accuracy) {
+  if (accuracy >= kSinglePrecisionRuleAccuracy) return single_precision_far_field_rules();
+  return far_field_rules();
+}
+
 const std::array<AttenuatedRule, 7>& attenuated_far_field_rules() {
   // Measured worst errors of V and K relative to area/(4πr) and area/(4πr²) over equilateral,
   // right and obtuse panels and 43 directions, at κ·diameter 1, 1.5, 2, 2.5, 3, 3.5, 4, 5, 6

@@ -22,6 +22,7 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <span>
 
 #include <Eigen/Core>
 
@@ -47,13 +48,30 @@ struct FarFieldRule {
 /// The table, cheapest rule first. Built once.
 const std::array<FarFieldRule, 7>& far_field_rules();
 
-/// The Gauss rule for distance ratio η = ratio and κ·diameter (0 for Laplace), or nullptr when
-/// the polar scheme is needed.
-inline const TriangleRule* select_far_field_rule(double ratio, double kappa_diameter) {
-  for (const FarFieldRule& row : far_field_rules())
+/// The accuracy of single_precision_far_field_rules(), relative as far_field_rules()' 1e−8.
+inline constexpr double kSinglePrecisionRuleAccuracy = 1e-7;
+
+/// The Laplace table (κ·diameter 0 only) for entries stored in single precision, whose
+/// rounding (6e−8) and the factors' (about 4e−7 of a product, bem/hmatrix) leave nothing of a
+/// tighter rule: each row within 1e−7 in its range, about half the points of far_field_rules()
+/// from η = 1.5 to 12. Built once.
+const std::array<FarFieldRule, 5>& single_precision_far_field_rules();
+
+/// far_field_rules(), or for Laplace at `accuracy` ≥ kSinglePrecisionRuleAccuracy
+/// single_precision_far_field_rules().
+std::span<const FarFieldRule> far_field_rules(double accuracy);
+
+/// The Gauss rule of `rules` for distance ratio η = ratio and κ·diameter (0 for Laplace), or
+/// nullptr when the polar scheme is needed.
+inline const TriangleRule* select_far_field_rule(double ratio, double kappa_diameter,
+                                                 std::span<const FarFieldRule> rules) {
+  for (const FarFieldRule& row : rules)
     if (ratio >= row.min_ratio && kappa_diameter <= row.max_kappa_diameter)
       return row.rule;
   return nullptr;
+}
+inline const TriangleRule* select_far_field_rule(double ratio, double kappa_diameter) {
+  return select_far_field_rule(ratio, kappa_diameter, far_field_rules());
 }
 
 /// The same selection from squared distance and squared diameter (no square root, no division:
@@ -242,10 +260,12 @@ PanelIntegrals exact_panel_integrals(const Kernel& kernel, const Panel& panel,
 }
 
 /// Single layer, double layer and (if with_gradients) their gradients ∇_x for the panel and
-/// target x, to 1e−8 relative accuracy (docs/quadrature.md).
+/// target x, to 1e−8 relative accuracy (docs/quadrature.md), or to the accuracy of `rules`
+/// (far_field_rules(accuracy)).
 template <class Kernel>
 PanelIntegrals integrate_panel(const Kernel& kernel, const Panel& panel, const Eigen::Vector3d& x,
-                               bool with_gradients = false) {
+                               bool with_gradients = false,
+                               std::span<const FarFieldRule> rules = far_field_rules()) {
   const double dist = (x - panel.centroid).norm();
   double kappa_diameter = 0.0;
   if constexpr (Kernel::has_exponential_decay) {
@@ -253,7 +273,7 @@ PanelIntegrals integrate_panel(const Kernel& kernel, const Panel& panel, const E
       return {};
     kappa_diameter = kernel.kappa() * panel.diameter;
   }
-  const TriangleRule* rule = select_far_field_rule(dist / panel.diameter, kappa_diameter);
+  const TriangleRule* rule = select_far_field_rule(dist / panel.diameter, kappa_diameter, rules);
   if (rule == nullptr) return exact_panel_integrals(kernel, panel, x, with_gradients);
   return gauss_panel_integrals(kernel, panel, x, *rule, with_gradients);
 }

@@ -388,7 +388,8 @@ BoundarySolution solve_transmission_hmatrix(const geometry::SurfaceMesh& mesh,
   double far_seconds = 0.0;
   const HierarchicalMatrix laplace = [&] {
     const GalerkinBlockGenerator<LaplaceKernel> generator(LaplaceKernel{}, panels,
-                                                          tree.permutation());
+                                                          tree.permutation(),
+                                                          options.single_precision);
     if (!nested_blocks.empty()) {
       const auto far_start = Clock::now();
       NestedFarFieldOptions far_options;
