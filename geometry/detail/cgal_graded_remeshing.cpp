@@ -236,7 +236,15 @@ class Remesher {
             kind_[vi] = kChain;
       }
       vpatch_[vi] = fpatch_[mesh_.face(mesh_.halfedge(vi))];
-      size_[vi] = in_.size(V.row(v).transpose());
+    }
+    // The sizes at the input's vertices, in parallel (the size field's queries are const).
+    std::vector<double> sizes(static_cast<std::size_t>(V.rows()));
+#pragma omp parallel for schedule(dynamic, 256)
+    for (Eigen::Index v = 0; v < V.rows(); ++v)
+      sizes[static_cast<std::size_t>(v)] = in_.size(V.row(v).transpose());
+    for (Eigen::Index v = 0; v < V.rows(); ++v) {
+      const VertexIndex vi = vh[static_cast<std::size_t>(v)];
+      size_[vi] = sizes[static_cast<std::size_t>(v)];
       sized_at_[vi] = V.row(v).transpose();
     }
     // The input surface of each patch.
@@ -292,11 +300,6 @@ class Remesher {
       sized_at_[v] = x;
     }
   }
-  void set_new_position(VertexIndex v, const Vec3& x) {
-    mesh_.point(v) = point(x);
-    size_[v] = in_.size(x);
-    sized_at_[v] = x;
-  }
 
   /// Is the triangle (a, b, c), replacing a face of unit normal `old_normal` whose angles
   /// were at least `old_min`, acceptable?
@@ -334,29 +337,49 @@ class Remesher {
       }
       std::sort(long_edges.begin(), long_edges.end(),
                 [](const auto& p, const auto& q) { return p.first > q.first; });
-      for (const auto& [ratio, e] : long_edges)
-        split(e);
+      // The new vertices' positions and sizes first, in parallel: a split moves no vertex,
+      // so every listed edge keeps its ends until it is split itself.
+      const auto count = static_cast<std::ptrdiff_t>(long_edges.size());
+      std::vector<Vec3> points(long_edges.size());
+      std::vector<double> sizes(long_edges.size());
+#pragma omp parallel for schedule(dynamic, 64)
+      for (std::ptrdiff_t i = 0; i < count; ++i) {
+        const auto k = static_cast<std::size_t>(i);
+        points[k] = split_point(long_edges[k].second);
+        sizes[k] = in_.size(points[k]);
+      }
+      for (std::size_t k = 0; k < long_edges.size(); ++k)
+        split(long_edges[k].second, points[k], sizes[k]);
     }
   }
 
-  void split(EdgeIndex e) {
+  /// Where split puts the new vertex of edge e: its midpoint, projected onto the patch of the
+  /// edge's first face or onto the crease.
+  Vec3 split_point(EdgeIndex e) const {
     const HalfedgeIndex h = mesh_.halfedge(e);
-    const VertexIndex a = mesh_.source(h), b = mesh_.target(h);
+    const int patch0 = fpatch_[mesh_.face(h)];
+    const Vec3 x = 0.5 * (pos(mesh_.source(h)) + pos(mesh_.target(h)));
+    if (crease_[e]) return on_crease(x);
+    if (!surfaces_[static_cast<std::size_t>(patch0)].flat())
+      return surfaces_[static_cast<std::size_t>(patch0)].project(x);
+    return x;
+  }
+
+  /// Splits e at x (split_point(e)), whose size is `size`.
+  void split(EdgeIndex e, const Vec3& x, double size) {
+    const HalfedgeIndex h = mesh_.halfedge(e);
     const bool crease = crease_[e];
     const FaceIndex f0 = mesh_.face(h), f1 = mesh_.face(mesh_.opposite(h));
     const int patch0 = fpatch_[f0], patch1 = fpatch_[f1];
-    Vec3 x = 0.5 * (pos(a) + pos(b));
-    if (!crease && !surfaces_[static_cast<std::size_t>(patch0)].flat())
-      x = surfaces_[static_cast<std::size_t>(patch0)].project(x);
-    if (crease)
-      x = on_crease(x);
     // hnew: a → v, followed by h: v → b.
     const HalfedgeIndex hnew = CGAL::Euler::split_edge(h, mesh_);
     const VertexIndex v = mesh_.target(hnew);
     crease_[mesh_.edge(hnew)] = crease;
     kind_[v] = crease ? kChain : kFree;
     vpatch_[v] = patch0;
-    set_new_position(v, x);
+    mesh_.point(v) = point(x);
+    size_[v] = size;
+    sized_at_[v] = x;
     // The two quadrilaterals (a, v, b, c) and (b, v, a, d) become two triangles each.
     const HalfedgeIndex top = CGAL::Euler::split_face(hnew, mesh_.next(mesh_.next(hnew)), mesh_);
     fpatch_[mesh_.face(top)] = patch0;
