@@ -108,8 +108,10 @@ struct YukawaAttenuation {
 
 /// Points per direction of the collapsed Gauss rule (degree 2n − 2) whose error estimate for
 /// a Yukawa panel integral, s·[(κ·diam/2)^{2n−1}/(2n−1)! + ratio^{−(2n−1)}], is below
-/// YukawaAttenuation::absolute_accuracy; 0 if none up to 8 points per direction is.
-inline int attenuated_rule_points(double attenuation, double kappa_diameter, double ratio) {
+/// `accuracy` (YukawaAttenuation::absolute_accuracy unless the entries are stored more
+/// coarsely); 0 if none up to 8 points per direction is.
+inline int attenuated_rule_points(double attenuation, double kappa_diameter, double ratio,
+                                  double accuracy = YukawaAttenuation::absolute_accuracy) {
   double taylor = 1.0;  // (κ·diam/2)^m / m!, m = 2n − 1
   const double half = 0.5 * kappa_diameter;
   const double inverse_ratio = 1.0 / ratio;
@@ -118,7 +120,7 @@ inline int attenuated_rule_points(double attenuation, double kappa_diameter, dou
   for (int n = 1; n <= 8; ++n) {
     for (; m < 2 * n - 1; ++m) taylor *= half / (m + 1);
     const double estimate = attenuation * (taylor + inverse_power);
-    if (estimate < YukawaAttenuation::absolute_accuracy) return n;
+    if (estimate < accuracy) return n;
     inverse_power *= inverse_ratio * inverse_ratio;
   }
   return 0;
@@ -253,10 +255,13 @@ class GalerkinOperators {
   /// shared ones compare equal exactly).
   static bool touching(const Panel& a, const Panel& b) { return touching_order(a, b).has_value(); }
 
-  /// The accuracy of the Yukawa polar integrals at the outer rule points, relative to an
-  /// unattenuated entry (integrate_attenuated_panel); YukawaAttenuation::absolute_accuracy
-  /// unless an assembly that stores its entries more coarsely asks for less.
-  void set_polar_accuracy(double accuracy) { polar_accuracy_ = accuracy; }
+  /// The accuracy of the Yukawa entries that do not touch, relative to an unattenuated entry:
+  /// of the trial panel's integrals at the outer rule points (integrate_attenuated_panel: the
+  /// polar scheme, and from kSinglePrecisionRuleAccuracy on the attenuated Gauss rules too) and
+  /// of the collapsed rules of attenuated pairs (attenuated_rule_points);
+  /// YukawaAttenuation::absolute_accuracy unless an assembly that stores its entries more
+  /// coarsely asks for less. The touching pairs and the outer rules keep theirs.
+  void set_yukawa_accuracy(double accuracy) { yukawa_accuracy_ = accuracy; }
 
   /// The accuracy of the Laplace panel integrals at the outer rule points, relative to each
   /// integral: 1e−8 (far_field_rules()), or from kSinglePrecisionRuleAccuracy on the cheaper
@@ -311,7 +316,8 @@ class GalerkinOperators {
     const double attenuation = std::exp(-kernel_.kappa() * gap);
     if (attenuation < YukawaAttenuation::negligible) return -1;
     if (attenuation < YukawaAttenuation::cheap_rule && ratio >= 1.5)
-      return attenuated_rule_points(attenuation, kernel_.kappa() * trial.diameter, ratio);
+      return attenuated_rule_points(attenuation, kernel_.kappa() * trial.diameter, ratio,
+                                    std::max(yukawa_accuracy_, YukawaAttenuation::absolute_accuracy));
     return 0;
   }
 
@@ -355,11 +361,11 @@ class GalerkinOperators {
 
   /// The trial panel's single and double layer at an outer rule point x: for Yukawa to
   /// YukawaAttenuation::absolute_accuracy of an unattenuated entry, its polar integrals to
-  /// set_polar_accuracy's (integrate_attenuated_panel), for Laplace to 1e−8 of the entry or
+  /// set_yukawa_accuracy's (integrate_attenuated_panel), for Laplace to 1e−8 of the entry or
   /// set_laplace_accuracy's (integrate_panel).
   PanelIntegrals trial_integrals(const Panel& trial, const Eigen::Vector3d& x) const {
     if constexpr (Kernel::has_exponential_decay)
-      return integrate_attenuated_panel(kernel_, trial, x, polar_accuracy_);
+      return integrate_attenuated_panel(kernel_, trial, x, yukawa_accuracy_);
     else
       return integrate_panel(kernel_, trial, x, false, laplace_rules_);
   }
@@ -600,7 +606,7 @@ class GalerkinOperators {
   Eigen::Index face(Eigen::Index i) const { return faces_ ? (*faces_)[size_t(i)] : i; }
 
   Kernel kernel_;
-  double polar_accuracy_ = YukawaAttenuation::absolute_accuracy;
+  double yukawa_accuracy_ = YukawaAttenuation::absolute_accuracy;
   std::span<const FarFieldRule> laplace_rules_ = far_field_rules();
   const std::vector<Panel>* panels_;
   const std::vector<Eigen::Index>* faces_;  ///< face number of each panel, or null: i

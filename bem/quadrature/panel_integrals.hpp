@@ -106,8 +106,21 @@ struct AttenuatedRule {
 /// The table, cheapest rule first. Built once.
 const std::array<AttenuatedRule, 7>& attenuated_far_field_rules();
 
-/// The rule of the attenuated table for distance ratio η = ratio and κ·diameter, or nullptr
-/// where no row applies.
+/// The attenuated table at kSinglePrecisionRuleAccuracy (1e−7) instead of
+/// kAttenuatedRuleAccuracy, for entries stored in single precision: 12 points from η = 2.5,
+/// 16 from 2, 36 from 1.5 (κ·diameter 1–8), where the table above takes up to 49. Built once.
+const std::array<AttenuatedRule, 3>& single_precision_attenuated_rules();
+
+/// The rule of `rules` (attenuated_far_field_rules() by default) for distance ratio η = ratio
+/// and κ·diameter, or nullptr where no row applies.
+inline const TriangleRule* select_attenuated_rule(double ratio, double kappa_diameter,
+                                                  std::span<const AttenuatedRule> rules) {
+  for (const AttenuatedRule& row : rules)
+    if (ratio >= row.min_ratio && kappa_diameter >= row.min_kappa_diameter &&
+        kappa_diameter <= row.max_kappa_diameter)
+      return row.rule;
+  return nullptr;
+}
 inline const TriangleRule* select_attenuated_rule(double ratio, double kappa_diameter) {
   for (const AttenuatedRule& row : attenuated_far_field_rules())
     if (ratio >= row.min_ratio && kappa_diameter >= row.min_kappa_diameter &&
@@ -285,9 +298,10 @@ PanelIntegrals integrate_panel(const Kernel& kernel, const Panel& panel, const E
 /// too far to matter). For
 /// the Galerkin entries, which are judged against their rows' largest entries
 /// (GalerkinOperators, YukawaAttenuation), not against themselves.
-/// `accuracy` replaces kAttenuatedRuleAccuracy in the polar scheme's requirement (the Gauss
-/// rules keep theirs): the exterior near field stored in single precision asks for no more
-/// than its rounding (bem/solve/yukawa_near_field.hpp).
+/// `accuracy` replaces kAttenuatedRuleAccuracy in the polar scheme's requirement, and from
+/// kSinglePrecisionRuleAccuracy on the attenuated table is single_precision_attenuated_rules()
+/// (the standard far-field rules keep theirs): the exterior near field stored in single
+/// precision asks for no more than its rounding (bem/solve/yukawa_near_field.hpp).
 template <class Kernel>
 PanelIntegrals integrate_attenuated_panel(const Kernel& kernel, const Panel& panel,
                                           const Eigen::Vector3d& x,
@@ -295,7 +309,10 @@ PanelIntegrals integrate_attenuated_panel(const Kernel& kernel, const Panel& pan
   static_assert(Kernel::has_exponential_decay, "the attenuated rules are for the Yukawa kernel");
   const double dist = (x - panel.centroid).norm();
   const TriangleRule* rule =
-      select_attenuated_rule(dist / panel.diameter, kernel.kappa() * panel.diameter);
+      accuracy >= kSinglePrecisionRuleAccuracy
+          ? select_attenuated_rule(dist / panel.diameter, kernel.kappa() * panel.diameter,
+                                   single_precision_attenuated_rules())
+          : select_attenuated_rule(dist / panel.diameter, kernel.kappa() * panel.diameter);
   if (dist - panel.radius > kernel.cutoff_distance()) return {};
   if (rule != nullptr) return gauss_panel_integrals(kernel, panel, x, *rule, false);
   if (const TriangleRule* standard = select_far_field_rule(dist / panel.diameter,

@@ -372,6 +372,14 @@ BoundarySolution solve_transmission_hmatrix(const geometry::SurfaceMesh& mesh,
 
   report_progress(progress, "assemble", 0.0);
   const auto interior_start = Clock::now();
+  // The entries are computed to what the run keeps of them: stored in single precision for a
+  // solve to 1e−6 or coarser (the default), to kSinglePrecisionRuleAccuracy (cheaper Gauss
+  // rules and polar resolutions, docs/quadrature.md); otherwise to the full accuracy of the
+  // panel integrals, so that a tighter tolerance is not limited by them.
+  const bool single_precision_entries =
+      options.single_precision && options.tolerance >= kSinglePrecisionEntriesTolerance;
+  const double yukawa_accuracy = single_precision_entries ? kSinglePrecisionYukawaAccuracy
+                                                          : YukawaAttenuation::absolute_accuracy;
   // The blocks of the H² part: between clusters of at least nested_min_cluster panels, and
   // not inside one preconditioner block (the preconditioner reads its blocks from the
   // H-matrix, HierarchicalMatrix::diagonal_blocks).
@@ -389,7 +397,7 @@ BoundarySolution solve_transmission_hmatrix(const geometry::SurfaceMesh& mesh,
   const HierarchicalMatrix laplace = [&] {
     const GalerkinBlockGenerator<LaplaceKernel> generator(LaplaceKernel{}, panels,
                                                           tree.permutation(),
-                                                          options.single_precision);
+                                                          single_precision_entries);
     if (!nested_blocks.empty()) {
       const auto far_start = Clock::now();
       NestedFarFieldOptions far_options;
@@ -413,10 +421,12 @@ BoundarySolution solve_transmission_hmatrix(const geometry::SurfaceMesh& mesh,
   const YukawaNearField<double> yukawa_double =
       options.single_precision ? YukawaNearField<double>()
                                : assemble_yukawa_near_field<double>(panels, tree, parameters.kappa,
-                                                                    negligible, progress, &exterior_rows);
+                                                                    negligible, progress, &exterior_rows,
+                                                                    yukawa_accuracy);
   const YukawaNearField<float> yukawa_single =
       options.single_precision ? assemble_yukawa_near_field<float>(panels, tree, parameters.kappa,
-                                                                   negligible, progress, &exterior_rows)
+                                                                   negligible, progress, &exterior_rows,
+                                                                   yukawa_accuracy)
                                : YukawaNearField<float>();
   const auto with_exterior = [&](const auto& use) {
     return options.single_precision ? use(yukawa_single) : use(yukawa_double);

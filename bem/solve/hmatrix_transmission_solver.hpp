@@ -33,6 +33,10 @@
 
 namespace bemshape::bem {
 
+/// The GMRES tolerance from which the single-precision entries (HMatrixSolverOptions::
+/// single_precision) are also computed to kSinglePrecisionRuleAccuracy only.
+inline constexpr double kSinglePrecisionEntriesTolerance = 1e-6;
+
 struct HMatrixSolverOptions {
   /// Relative residual GMRES must reach (`--tolerance`), preconditioned on the side
   /// `preconditioner_side` names: by default ‖M⁻¹(b − A x)‖/‖M⁻¹b‖, which tracks the

@@ -118,7 +118,8 @@ YukawaNearField<Scalar> assemble_yukawa_near_field(const std::vector<Panel>& pan
                                                    const ClusterTree& tree, double kappa,
                                                    double negligible,
                                                    const ProgressCallback& progress,
-                                                   const YukawaNearFieldRows* rows) {
+                                                   const YukawaNearFieldRows* rows,
+                                                   double accuracy) {
   const auto& perm = tree.permutation();
   const Eigen::Index n = tree.root().size();
   const Cutoff cutoff(panels, tree, kappa, negligible);
@@ -149,7 +150,7 @@ YukawaNearField<Scalar> assemble_yukawa_near_field(const std::vector<Panel>& pan
     throw ran_out_of_memory(n);
   }
   GalerkinOperators<YukawaKernel> yukawa(YukawaKernel{kappa}, panels);
-  if constexpr (std::is_same_v<Scalar, float>) yukawa.set_polar_accuracy(kSinglePrecisionPolarAccuracy);
+  yukawa.set_yukawa_accuracy(accuracy);
   yukawa.tabulate_touching_pairs();
 
   std::atomic<Eigen::Index> rows_done{0};
@@ -193,9 +194,9 @@ YukawaNearField<Scalar> assemble_yukawa_near_field(const std::vector<Panel>& pan
 
 template YukawaNearField<double> assemble_yukawa_near_field<double>(
     const std::vector<Panel>&, const ClusterTree&, double, double, const ProgressCallback&,
-    const YukawaNearFieldRows*);
+    const YukawaNearFieldRows*, double);
 template YukawaNearField<float> assemble_yukawa_near_field<float>(
     const std::vector<Panel>&, const ClusterTree&, double, double, const ProgressCallback&,
-    const YukawaNearFieldRows*);
+    const YukawaNearFieldRows*, double);
 
 }  // namespace bemshape::bem

@@ -21,6 +21,7 @@
 // whose columns are kept as runs of consecutive panels (YukawaNearField).
 
 #include <cstdint>
+#include <type_traits>
 #include <vector>
 
 #include <Eigen/Core>
@@ -166,14 +167,16 @@ class YukawaNearField {
 /// them (runs no longer than YukawaNearField's kMaxRun).
 Eigen::Index yukawa_near_field_runs(const std::vector<Eigen::Index>& columns);
 
-/// The accuracy of the polar panel integrals (relative to an unattenuated entry,
-/// integrate_attenuated_panel) when the entries are stored in single precision: rounding to
-/// float already moves the largest entries by up to 2⁻²⁴ ≈ 6e−8 of themselves, so the
-/// 1e−9 of YukawaAttenuation::absolute_accuracy would buy nothing. The Gauss rules and the
-/// touching pairs keep their own accuracy. The tube of the wall-reading bench: exterior near
-/// field 2.3–2.9 → 1.7 s on one thread, walls unchanged (docs/quadrature.md, "Near targets
+/// The accuracy of the Yukawa entries that do not touch (relative to an unattenuated entry,
+/// GalerkinOperators::set_yukawa_accuracy) when they are stored in single precision:
+/// rounding to float already moves the largest entries by up to 2⁻²⁴ ≈ 6e−8 of themselves,
+/// so the 1e−9 of YukawaAttenuation::absolute_accuracy would buy nothing. It sets the polar
+/// scheme's resolution, the attenuated Gauss rules (single_precision_attenuated_rules) and
+/// the attenuated pairs' collapsed rules; the touching pairs and the outer rules keep
+/// theirs. The tube of the wall-reading bench: exterior near field 2.3–2.9 → 1.7 s on one
+/// thread from the polar scheme's share, walls unchanged (docs/quadrature.md, "Near targets
 /// of panels many 1/κ across").
-inline constexpr double kSinglePrecisionPolarAccuracy = 1e-7;
+inline constexpr double kSinglePrecisionYukawaAccuracy = kSinglePrecisionRuleAccuracy;
 
 /// The gap between two panels' bounding balls beyond which the pair is dropped,
 /// R* = −ln(negligible)/κ [model units]: the dropped part of a row is about `negligible` of its sum (see the top of this
@@ -195,11 +198,16 @@ YukawaNearFieldRows yukawa_near_field_rows(const std::vector<Panel>& panels, con
 /// the rows below the compression tolerance for fewer pairs. If the counted pairs do not fit in the memory the machine has
 /// left (core/memory.hpp), ResourceError before any is stored. The rows are written in place
 /// into storage of the counted size, so nothing else of the matrix's size is ever held.
-/// `rows`: yukawa_near_field_rows of the same arguments, if already counted.
+/// `rows`: yukawa_near_field_rows of the same arguments, if already counted. `accuracy`: of
+/// the entries that do not touch (GalerkinOperators::set_yukawa_accuracy); by default
+/// kSinglePrecisionYukawaAccuracy in single precision, YukawaAttenuation::absolute_accuracy
+/// in double.
 template <class Scalar = double>
 YukawaNearField<Scalar> assemble_yukawa_near_field(
     const std::vector<Panel>& panels, const ClusterTree& tree, double kappa,
     double negligible = YukawaAttenuation::negligible, const ProgressCallback& progress = {},
-    const YukawaNearFieldRows* rows = nullptr);
+    const YukawaNearFieldRows* rows = nullptr,
+    double accuracy = std::is_same_v<Scalar, float> ? kSinglePrecisionYukawaAccuracy
+                                                    : YukawaAttenuation::absolute_accuracy);
 
 }  // namespace bemshape::bem

@@ -95,18 +95,32 @@ TEST_CASE("Yukawa near field: the dense operator's entries within the cutoff dis
   CHECK(wrong == 0);
 
   // The single-precision matrix of the H-matrix solver: the same pairs in the same runs,
-  // each value the double one rounded once to float, 8 bytes per pair.
+  // each value the double one computed at the same accuracy (kSinglePrecisionYukawaAccuracy,
+  // its default) rounded once to float, 8 bytes per pair.
   const bem::YukawaNearField<float> y_single = bem::assemble_yukawa_near_field<float>(panels, tree, kappa);
+  const bem::YukawaNearField<double> y_coarse = bem::assemble_yukawa_near_field<double>(
+      panels, tree, kappa, bem::YukawaAttenuation::negligible, {}, nullptr,
+      bem::kSinglePrecisionYukawaAccuracy);
   REQUIRE(y_single.pairs() == y.pairs());
   REQUIRE(y_single.runs() == y.runs());
+  REQUIRE(y_coarse.pairs() == y.pairs());
   CHECK(y_single.bytes() == 8 * std::uint64_t(y.pairs()) + 6 * std::uint64_t(y.runs()) + 16 * std::uint64_t(n + 1));
   Eigen::Index rounded_differently = 0;
+  double largest_change = 0.0, largest_entry = 0.0;
   for (Eigen::Index r = 0; r < y.runs(); ++r)
     rounded_differently += y.run_column(r) != y_single.run_column(r) || y.run_length(r) != y_single.run_length(r);
-  for (Eigen::Index s = 0; s < y.pairs(); ++s)
-    rounded_differently += static_cast<float>(y.minus_double_layer()[s]) != y_single.minus_double_layer()[s] ||
-                           static_cast<float>(y.single_layer()[s]) != y_single.single_layer()[s];
+  for (Eigen::Index s = 0; s < y.pairs(); ++s) {
+    rounded_differently += static_cast<float>(y_coarse.minus_double_layer()[s]) != y_single.minus_double_layer()[s] ||
+                           static_cast<float>(y_coarse.single_layer()[s]) != y_single.single_layer()[s];
+    largest_change = std::max({largest_change, std::abs(y_coarse.single_layer()[s] - y.single_layer()[s]),
+                               std::abs(y_coarse.minus_double_layer()[s] - y.minus_double_layer()[s])});
+    largest_entry = std::max({largest_entry, std::abs(y.single_layer()[s]), std::abs(y.minus_double_layer()[s])});
+  }
   CHECK(rounded_differently == 0);
+  // The coarser entries differ from the full-accuracy ones by about their accuracy (relative
+  // to an unattenuated entry, on the scale of the largest ones).
+  CAPTURE(largest_change / largest_entry);
+  CHECK(largest_change <= 3.0 * bem::kSinglePrecisionYukawaAccuracy * largest_entry);
 }
 
 TEST_CASE("Yukawa near field: panels larger than the cutoff keep every neighbour they touch") {
