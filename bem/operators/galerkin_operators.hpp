@@ -69,6 +69,14 @@ inline void subdivided_rule(const Panel& panel, int levels, const TriangleRule& 
                             std::vector<Eigen::Vector3d>& points, std::vector<double>& weights) {
   points.clear();
   weights.clear();
+  if (levels == 0) {  // the rule on the panel itself: no sub-triangles to build
+    for (int q = 0; q < rule.size(); ++q) {
+      const auto i = static_cast<size_t>(q);
+      points.push_back(panel.corners[0] + rule.xi[i] * panel.edge1 + rule.eta[i] * panel.edge2);
+      weights.push_back(panel.area * rule.weight[i]);
+    }
+    return;
+  }
   std::vector<std::array<Eigen::Vector3d, 3>> tris{{panel.corners[0], panel.corners[1], panel.corners[2]}};
   for (int l = 0; l < levels; ++l) {
     std::vector<std::array<Eigen::Vector3d, 3>> finer;

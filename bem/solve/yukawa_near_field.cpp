@@ -152,12 +152,28 @@ YukawaNearField<Scalar> assemble_yukawa_near_field(const std::vector<Panel>& pan
   GalerkinOperators<YukawaKernel> yukawa(YukawaKernel{kappa}, panels);
   yukawa.set_yukawa_accuracy(accuracy);
   yukawa.tabulate_touching_pairs();
+  // At single-precision accuracy the near coplanar pairs below the diagonal (η < near_ratio:
+  // the pairs whose outer rule takes the polar scheme's integrals; the others cost less than
+  // the test) are mirrored (mirrored_coplanar_pair): marked NaN by the first pass, copied by
+  // the second.
+  const bool mirror = accuracy >= kSinglePrecisionRuleAccuracy;
+  const auto mirrored = [&](Eigen::Index i, Eigen::Index j) {
+    if (!mirror || j >= i) return false;
+    const Panel& a = panels[size_t(perm[size_t(i)])];
+    const Panel& b = panels[size_t(perm[size_t(j)])];
+    const double near = OuterRuleThresholds::near_ratio * std::max(a.diameter, b.diameter);
+    if ((a.centroid - b.centroid).squaredNorm() >= near * near) return false;
+    return mirrored_coplanar_pair(a, b) &&
+           yukawa.attenuated_points(a, b, GalerkinOperators<YukawaKernel>::separation_ratio(a, b)) == 0;
+  };
+  constexpr Scalar kMirrored = std::numeric_limits<Scalar>::quiet_NaN();
 
   std::atomic<Eigen::Index> rows_done{0};
 #pragma omp parallel
   {
     std::vector<int> stack;
     std::vector<Eigen::Index> kept, faces;
+    std::vector<std::size_t> computed;
     std::vector<GalerkinOperators<YukawaKernel>::Entry> entries;
     // Each row writes only its own slots, so the rows can be filled concurrently.
 #pragma omp for schedule(dynamic, 16)
@@ -167,15 +183,25 @@ YukawaNearField<Scalar> assemble_yukawa_near_field(const std::vector<Panel>& pan
       try {
         const Panel& test = panels[size_t(perm[size_t(i)])];
         row_columns(test, tree, cutoff, stack, kept);
-        faces.resize(kept.size());
-        for (size_t t = 0; t < kept.size(); ++t) faces[t] = perm[size_t(kept[t])];
         y.set_columns(i, kept);
-        entries.resize(kept.size());
-        yukawa.fill_row(perm[size_t(i)], faces, entries);
         const Eigen::Index first = y.row_begin(i);
+        faces.clear();
+        computed.clear();
         for (size_t t = 0; t < kept.size(); ++t) {
-          y.minus_double_layer()[first + Eigen::Index(t)] = static_cast<Scalar>(-entries[t].double_layer);
-          y.single_layer()[first + Eigen::Index(t)] = static_cast<Scalar>(entries[t].single_layer);
+          if (mirrored(i, kept[t])) {
+            y.minus_double_layer()[first + Eigen::Index(t)] = Scalar(0);
+            y.single_layer()[first + Eigen::Index(t)] = kMirrored;
+          } else {
+            faces.push_back(perm[size_t(kept[t])]);
+            computed.push_back(t);
+          }
+        }
+        entries.resize(faces.size());
+        yukawa.fill_row(perm[size_t(i)], faces, entries);
+        for (size_t u = 0; u < computed.size(); ++u) {
+          const Eigen::Index slot = first + Eigen::Index(computed[u]);
+          y.minus_double_layer()[slot] = static_cast<Scalar>(-entries[u].double_layer);
+          y.single_layer()[slot] = static_cast<Scalar>(entries[u].single_layer);
         }
       } catch (const std::bad_alloc&) {
         out_of_memory = true;
@@ -189,6 +215,24 @@ YukawaNearField<Scalar> assemble_yukawa_near_field(const std::vector<Panel>& pan
   }
   throw_if_cancelled();
   if (out_of_memory) throw ran_out_of_memory(n);
+  if (mirror) {
+    // The mirrored slots (i, j), j < i: Vκ[i, j] = Vκ[j, i] from row j (Kκ is 0 between
+    // coplanar panels); computed here should row j not hold column i (the cutoff's test
+    // rounds alike both ways, but is not required to).
+#pragma omp parallel for schedule(dynamic, 64)
+    for (Eigen::Index i = 0; i < n; ++i) {
+      Eigen::Index s = y.row_begin(i);
+      for (Eigen::Index r = y.run_begin(i); r < y.run_end(i); ++r)
+        for (Eigen::Index j = y.run_column(r); j < y.run_column(r) + y.run_length(r); ++j, ++s) {
+          if (!std::isnan(y.single_layer()[s])) continue;
+          const Eigen::Index slot = y.slot(j, i);
+          y.single_layer()[s] =
+              slot >= 0 && !std::isnan(y.single_layer()[slot])
+                  ? y.single_layer()[slot]
+                  : static_cast<Scalar>(yukawa.entry(perm[size_t(i)], perm[size_t(j)]).single_layer);
+        }
+    }
+  }
   return y;
 }
 

@@ -20,6 +20,8 @@
 // i.e. the exterior identity's operator on (φ, q) without the ½M term, stored as pairs
 // whose columns are kept as runs of consecutive panels (YukawaNearField).
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <type_traits>
 #include <vector>
@@ -28,6 +30,7 @@
 #include <Eigen/SparseCore>
 
 #include "bem/operators/galerkin_operators.hpp"
+#include "bem/kernels/yukawa_kernel.hpp"
 #include "bem/hmatrix/cluster_tree.hpp"
 #include "bem/quadrature/panel.hpp"
 #include "core/assert.hpp"
@@ -127,6 +130,17 @@ class YukawaNearField {
   const Scalar* minus_double_layer() const { return minus_double_layer_.data(); }
   const Scalar* single_layer() const { return single_layer_.data(); }
 
+  /// The slot of column j in row i, −1 if row i does not hold it.
+  Eigen::Index slot(Eigen::Index i, Eigen::Index j) const {
+    Eigen::Index s = row_begin(i);
+    for (Eigen::Index r = run_begin(i); r < run_end(i); ++r) {
+      if (j < run_column(r)) return -1;
+      if (j < run_column(r) + run_length(r)) return s + (j - run_column(r));
+      s += run_length(r);
+    }
+    return -1;
+  }
+
   /// f(j, −Kκ[i, j], Vκ[i, j]) for the pairs of row i, j increasing.
   template <class F>
   void for_each_in_row(Eigen::Index i, F&& f) const {
@@ -162,6 +176,20 @@ class YukawaNearField {
   std::vector<std::uint16_t> run_length_;
   std::vector<Scalar> minus_double_layer_, single_layer_;
 };
+
+/// Whether the pair (a, b) is coplanar (normals parallel to 1e−12, each centroid within 1e−9
+/// of the larger diameter of the other's plane; symmetric in a and b) and does not touch: then
+/// Kκ vanishes both ways and Vκ[a, b] = Vκ[b, a], so the single-precision assembly computes
+/// the pair once, in the row of the panel first in tree order, and mirrors it into the other
+/// (assemble_yukawa_near_field). On the flat walls of the wall reading's meshes these are a
+/// quarter of the time of the pairs that do not touch.
+inline bool mirrored_coplanar_pair(const Panel& a, const Panel& b) {
+  const double tolerance = 1e-9 * std::max(a.diameter, b.diameter);
+  const Eigen::Vector3d offset = b.centroid - a.centroid;
+  return std::abs(a.normal.dot(b.normal)) > 1.0 - 1e-12 && std::abs(offset.dot(a.normal)) <= tolerance &&
+         std::abs(offset.dot(b.normal)) <= tolerance &&
+         !GalerkinOperators<YukawaKernel>::touching(a, b);
+}
 
 /// The runs of consecutive columns in strictly increasing `columns`, as set_columns stores
 /// them (runs no longer than YukawaNearField's kMaxRun).
