@@ -67,4 +67,9 @@ const std::array<AttenuatedRule, 3>& single_precision_attenuated_rules() {
   return table;
 }
 
+std::span<const AttenuatedRule> attenuated_rules(double accuracy) {
+  if (accuracy >= kSinglePrecisionRuleAccuracy) return single_precision_attenuated_rules();
+  return attenuated_far_field_rules();
+}
+
 }  // namespace bemshape::bem

@@ -111,6 +111,10 @@ const std::array<AttenuatedRule, 7>& attenuated_far_field_rules();
 /// 16 from 2, 36 from 1.5 (κ·diameter 1–8), where the table above takes up to 49. Built once.
 const std::array<AttenuatedRule, 3>& single_precision_attenuated_rules();
 
+/// attenuated_far_field_rules(), or at `accuracy` ≥ kSinglePrecisionRuleAccuracy
+/// single_precision_attenuated_rules().
+std::span<const AttenuatedRule> attenuated_rules(double accuracy);
+
 /// The rule of `rules` (attenuated_far_field_rules() by default) for distance ratio η = ratio
 /// and κ·diameter, or nullptr where no row applies.
 inline const TriangleRule* select_attenuated_rule(double ratio, double kappa_diameter,
@@ -122,11 +126,7 @@ inline const TriangleRule* select_attenuated_rule(double ratio, double kappa_dia
   return nullptr;
 }
 inline const TriangleRule* select_attenuated_rule(double ratio, double kappa_diameter) {
-  for (const AttenuatedRule& row : attenuated_far_field_rules())
-    if (ratio >= row.min_ratio && kappa_diameter >= row.min_kappa_diameter &&
-        kappa_diameter <= row.max_kappa_diameter)
-      return row.rule;
-  return nullptr;
+  return select_attenuated_rule(ratio, kappa_diameter, attenuated_far_field_rules());
 }
 
 /// The two sums a quadrature rule needs for both kernels, G = E(r)/(4πr) with E = 1
@@ -308,11 +308,8 @@ PanelIntegrals integrate_attenuated_panel(const Kernel& kernel, const Panel& pan
                                           double accuracy = kAttenuatedRuleAccuracy) {
   static_assert(Kernel::has_exponential_decay, "the attenuated rules are for the Yukawa kernel");
   const double dist = (x - panel.centroid).norm();
-  const TriangleRule* rule =
-      accuracy >= kSinglePrecisionRuleAccuracy
-          ? select_attenuated_rule(dist / panel.diameter, kernel.kappa() * panel.diameter,
-                                   single_precision_attenuated_rules())
-          : select_attenuated_rule(dist / panel.diameter, kernel.kappa() * panel.diameter);
+  const TriangleRule* rule = select_attenuated_rule(
+      dist / panel.diameter, kernel.kappa() * panel.diameter, attenuated_rules(accuracy));
   if (dist - panel.radius > kernel.cutoff_distance()) return {};
   if (rule != nullptr) return gauss_panel_integrals(kernel, panel, x, *rule, false);
   if (const TriangleRule* standard = select_far_field_rule(dist / panel.diameter,
