@@ -373,7 +373,11 @@ int run_tool(const std::string& tool, const std::string& name, const std::string
       if (!result.thick_regions.empty())
         for (const auto& feature : spec.part.features)
           if (feature.role == testing::WallRole::thick_feature) {
-            const Eigen::Vector3d p = result.thick_regions.front().max_location;
+            // The thickest face's place on the design, as the faces are labelled: on a noisy
+            // copy the boss's top face lies up to the noise above the feature's box.
+            const Eigen::RowVector3d thickest = result.thick_regions.front().max_location.transpose();
+            const Eigen::Vector3d p =
+                geometry::ClosestPointQuery(spec.part.mesh).closest_points(thickest).points.row(0).transpose();
             if ((p.array() >= feature.box.min.array() - 1e-6).all() &&
                 (p.array() <= feature.box.max.array() + 1e-6).all())
               s.thick_found = 1;

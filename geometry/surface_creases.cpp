@@ -154,11 +154,19 @@ SurfaceCreases find_surface_creases(const SurfaceMesh& mesh, const CreaseOptions
       if (tessellation && small_candidate(e)) {
         const auto A = static_cast<std::size_t>(facet_of[static_cast<std::size_t>(e.f0)]);
         const auto B = static_cast<std::size_t>(facet_of[static_cast<std::size_t>(e.f1)]);
-        if (A != B && (!options.require_facet_strips ||
-                       (facet_neighbours[A].size() >= 2 && facet_neighbours[B].size() >= 2))) {
+        const bool strip = A != B && (!options.require_facet_strips ||
+                                      (facet_neighbours[A].size() >= 2 && facet_neighbours[B].size() >= 2));
+        // A candidate inside one facet (its two faces joined around its ends across edges of
+        // θ ≤ θ_c) separates nothing: a jump of the filtered normals on a round, a kink that
+        // fades out. Without rule 1 it is smoothed like any candidate, at the width between
+        // its two faces' centroids, the distance over which the normals turned by θ.
+        const bool inside_facet = A == B && !options.require_facet_strips;
+        if (strip || inside_facet) {
           tessellated = true;
-          crossed.facet_width = std::min(2.0 * facet_area[A] / facet_candidate_length[A],
-                                         2.0 * facet_area[B] / facet_candidate_length[B]);
+          crossed.facet_width =
+              strip ? std::min(2.0 * facet_area[A] / facet_candidate_length[A],
+                               2.0 * facet_area[B] / facet_candidate_length[B])
+                    : (mesh.face_centroids().row(e.f0) - mesh.face_centroids().row(e.f1)).norm();
           if (smoothing) {
             crossed.max_chord =
                 longest_chord_within(e.angle, crossed.facet_width, options.chord_tolerance);

@@ -54,7 +54,12 @@ struct CreaseOptions {
   double normal_scale = 0.0;
   /// Rule 1 above (a facet strip on both sides) for smoothing; false smooths every candidate
   /// up to θ_s the chord tolerance allows, lone shallow kinks too (with normals filtered at a
-  /// scale, a tessellated ball's facets merge in places, and the strips break up).
+  /// scale, a tessellated ball's facets merge in places, and the strips break up), and the
+  /// candidates whose two faces are one facet (joined around the candidate's ends), with the
+  /// distance between the two faces' centroids as w: the filtered normals of a fine export's
+  /// round jump by 5–9° at some of its facet edges and not at the next, and kept as creases
+  /// those jumps were short creases about a millimetre apart, each asking for elements that
+  /// small (plate_holes' rounded bottom edge).
   bool require_facet_strips = true;
   /// If > 0 [degrees]: a crease vertex where exactly two creases meet and turn by at most
   /// this (a round rim, tessellated as a polygon of short creases) is *curved*: the remesher
