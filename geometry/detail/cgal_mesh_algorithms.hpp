@@ -14,8 +14,8 @@ namespace bemshape::geometry::detail {
 struct CgalSelfIntersections {
   /// Pairs of faces that intersect other than in a shared vertex or edge.
   std::size_t pairs = 0;
-  /// The pairs (face indices, smaller first), in the order found; at most
-  /// kMaxListedIntersections of them.
+  /// The pairs (face indices, smaller first), ascending; at most kMaxListedIntersections of
+  /// them (the smallest).
   std::vector<std::pair<Eigen::Index, Eigen::Index>> list;
 };
 

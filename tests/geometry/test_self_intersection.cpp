@@ -1,4 +1,5 @@
 #include <catch2/catch.hpp>
+#include <omp.h>
 
 #include "geometry/primitive_meshes.hpp"
 #include "geometry/self_intersection.hpp"
@@ -39,4 +40,23 @@ TEST_CASE("a vertex pushed through the opposite side makes the surface cross its
   REQUIRE(moved >= 0);
   v(moved, 2) = 1.5;
   CHECK(find_self_intersections(v, box.faces()).pairs > 0);
+}
+
+TEST_CASE("the scan in slabs, one per thread, finds each intersecting pair once") {
+  // Two spheres of 20,480 faces each (enough for two slabs) crossing on the circle x = 0.25,
+  // where the scan's cut across x falls: pairs on both sides of it and straddling it.
+  const SurfaceMesh both = concatenated(make_geodesic_sphere(1.0, 32),
+                                        make_geodesic_sphere(1.0, 32, Eigen::Vector3d(0.5, 0, 0)));
+  REQUIRE(both.num_faces() == 40960);
+  const int threads = omp_get_max_threads();
+  omp_set_num_threads(1);
+  const SelfIntersections one = find_self_intersections(both.vertices(), both.faces());
+  omp_set_num_threads(2);
+  const SelfIntersections two = find_self_intersections(both.vertices(), both.faces());
+  omp_set_num_threads(threads);
+  // Each face of the circle's band meets a few faces of the other sphere.
+  CHECK(one.pairs > 500);
+  CHECK(two.pairs == one.pairs);
+  CHECK(two.face_pairs == one.face_pairs);
+  CHECK(one.face_pairs.size() == one.pairs);
 }
