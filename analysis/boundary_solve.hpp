@@ -88,14 +88,12 @@ enum class SolverMeshRule {
 inline constexpr double kWallMeshThicknessRatio = 3.0;
 /// Neighbouring elements of the wall-reading mesh differ in size by at most this factor
 /// (geometry::GradedMeshParameters::gradation, g). A steeper gradation would let the sizes
-/// asked at creases close together (a counterbore's rims 0.9 mm apart) grow back to the
-/// walls' sooner: at 2, with 1.4 kept within an element's size of curved surfaces' edges
-/// (GradedMeshParameters::curvature_gradation), plate_holes takes 6,452 solver faces against
-/// 10,244 (`bemshape thickness plate_holes.stl --min-thickness 11.43` on the fine export of
-/// bench/bench_thickness_tools). But a plate with 3 % noise on its export then reads within
-/// 1 % of its wall on 44.8 % of its nominal area, less than the 45.2 % on which its own wall
-/// at scale h0 is (47 % at 1.4; tests/analysis/test_thickness_scale.cpp): fewer vertices
-/// average less of the noise.
+/// asked at creases close together (a counterbore's rims 0.9 mm apart) and along rounded
+/// edges grow back to the walls' sooner: plate_holes takes 7,648 and 6,648 solver faces at
+/// 1.5 and 1.6 against 9,020 (bench/bench_thickness_tools plate_holes). But at 1.5 the
+/// σ = 3 % copies of the T-junction and the L-bracket read a false thin region each, and at
+/// 1.6 a pit of h0/4 is flagged (tests/analysis/test_thickness_scale.cpp): fewer vertices
+/// average less of the noise and follow less of a small feature.
 inline constexpr double kWallMeshGradation = geometry::kDefaultGradation;
 /// ... and at most this many times h0 anywhere (h_max / h0). It binds only on walls thicker
 /// than (this / c_t)·h0: a part checked at an h0 well below its walls (`--min-thickness 1`
