@@ -119,9 +119,7 @@ std::uint64_t mesh_and_solve(const geometry::PreparedMesh& input, const SolveOpt
     bem::HMatrixSolverOptions hmatrix;
     hmatrix.tolerance = solver.tolerance;
     hmatrix.aca_tolerance = kCompressionToleranceRatio * solver.tolerance;
-    // A single-precision H-matrix perturbs a product by about 4e−7: fine for a residual of
-    // 1e−6, not for a tighter one.
-    hmatrix.single_precision = solver.tolerance >= 1e-6;
+    hmatrix.single_precision = solver.tolerance >= bem::kSinglePrecisionStorageTolerance;
     hmatrix.max_memory_bytes = options.max_memory_bytes;
     hmatrix.far_field = solver.far_field;
     hmatrix.estimate_only = check_only;

@@ -33,6 +33,11 @@
 
 namespace bemshape::bem {
 
+/// The GMRES tolerance from which the operators are stored in single precision
+/// (HMatrixSolverOptions::single_precision): their rounding perturbs a product by about
+/// 4e−7, below a residual of 1e−6, above a tighter one.
+inline constexpr double kSinglePrecisionStorageTolerance = 1e-6;
+
 /// The GMRES tolerance from which the single-precision entries (HMatrixSolverOptions::
 /// single_precision) are also computed to kSinglePrecisionRuleAccuracy only.
 inline constexpr double kSinglePrecisionEntriesTolerance = 1e-6;
@@ -53,8 +58,8 @@ struct HMatrixSolverOptions {
   /// exterior values in single precision: under half the memory. Rounding the factors
   /// perturbs a product by about 4e−7 relative, the near field by less (measured,
   /// tests/bem/hmatrix), which leaves the solution unchanged at the default tolerance
-  /// of 1e−6 (docs/benchmarks.md) but would dominate a tighter one: turn it off below 1e−6
-  /// (analysis/boundary_solve.cpp does).
+  /// of 1e−6 (docs/benchmarks.md) but would dominate a tighter one: turn it off below
+  /// kSinglePrecisionStorageTolerance (analysis/boundary_solve.cpp does).
   bool single_precision = true;
   /// Panels per leaf of the cluster tree.
   Eigen::Index leaf_size = ClusterTree::kDefaultLeafSize;
