@@ -45,6 +45,12 @@
 
 namespace bemshape::bem {
 
+/// Two touching panels are coplanar when every edge of each is orthogonal to the other's
+/// normal to this fraction of the longest edge: their double-layer entries then vanish (the
+/// kernel's n·(x − y) is zero on the pair), are set to exactly 0, and the Sauter–Schwab loop
+/// sums V alone.
+inline constexpr double kCoplanarTouchingTolerance = 1e-12;
+
 /// Outer (test-panel) quadrature by the separation ratio η = |c_j − c_k| / max(diam_j, diam_k).
 /// Thresholds chosen so that the outer rule's error stays well below the discretisation
 /// error (measured on the ball, docs/theory.md): a rule of degree p on T_j integrates the
@@ -434,7 +440,8 @@ class GalerkinOperators {
   /// rule's nodes (ξ = 1), the radial direction integrated exactly (bem/quadrature/radial_moments.hpp):
   ///   V = 4|T_j||T_k| Σ_q w_q M_V(κρ_q)/(4πρ_q),  K[j, k] = 4|T_j||T_k| Σ_q w_q δ_q M_K(κρ_q)/(4πρ_q³);
   /// K[k, j] is the same sum with δ'_q = −z_q·n_j (the roles of the points swapped). K vanishes
-  /// for coincident panels (δ ≡ 0 on a flat panel) and is set to exactly 0 there.
+  /// for coincident and for coplanar panels (δ ≡ δ' ≡ 0, kCoplanarTouchingTolerance) and is
+  /// set to exactly 0 there; the loop then sums V alone.
   TouchingPairEntries touching_pair(const Panel& test, const Panel& trial,
                                     const TouchingOrder& order, const SauterSchwabRule& rule) const {
     const auto corner = [](const Panel& p, const std::array<int, 3>& o, int i) -> const Eigen::Vector3d& {
@@ -450,6 +457,11 @@ class GalerkinOperators {
     const Eigen::Vector3d& m = test.normal;
     const double t1n = t1.dot(n), t2n = t2.dot(n);
     const double s1m = s1.dot(m), s2m = s2.dot(m);
+    // Coplanar panels (each one's edges orthogonal to the other's normal, to rounding): δ ≡ 0
+    // and δ' ≡ 0, both double layers vanish, and only V is summed.
+    const double flat = kCoplanarTouchingTolerance *
+                        std::max({t1.norm(), t2.norm(), s1.norm(), s2.norm()});
+    const bool coplanar = std::max({std::abs(t1n), std::abs(t2n), std::abs(s1m), std::abs(s2m)}) <= flat;
     // Evaluated in chunks as Eigen arrays, which vectorise the square roots and exponentials.
     constexpr Eigen::Index chunk = 256;
     using Chunk = Eigen::Array<double, Eigen::Dynamic, 1, 0, chunk, 1>;
@@ -467,6 +479,14 @@ class GalerkinOperators {
       const Chunk zz = x1 * t1.z() + x2 * t2.z() - y1 * s1.z() - y2 * s2.z();
       const Chunk rho2 = zx.square() + zy.square() + zz.square();
       const Chunk inv_rho = rho2.rsqrt();
+      if (coplanar) {
+        if constexpr (Kernel::has_exponential_decay)
+          yukawa_radial_single_moment(Chunk(kernel_.kappa() * rho2 * inv_rho), single);
+        else
+          single = Chunk::Constant(count, 1.0 / 3.0);
+        sl += (w * single * inv_rho).sum();
+        continue;
+      }
       if constexpr (Kernel::has_exponential_decay) {
         yukawa_radial_moments(Chunk(kernel_.kappa() * rho2 * inv_rho), single, double_layer);
         single *= inv_rho;
@@ -484,7 +504,7 @@ class GalerkinOperators {
       dl_transposed += (wd * d_transposed).sum();
     }
     const double scale = 4.0 * test.area * trial.area * Kernel::inv_four_pi;
-    if (order.kind == TouchingKind::coincident) return {scale * sl, 0.0, 0.0};
+    if (order.kind == TouchingKind::coincident || coplanar) return {scale * sl, 0.0, 0.0};
     return {scale * sl, scale * dl, scale * dl_transposed};
   }
 

@@ -65,4 +65,20 @@ void yukawa_radial_moments(const Array& c, Array& single, Array& double_layer) {
   double_layer = small.select(series_double, double_layer);
 }
 
+/// M_V(c) alone, as yukawa_radial_moments gives it: for the pairs whose double layer vanishes
+/// (coplanar touching panels).
+template <class Array>
+void yukawa_radial_single_moment(const Array& c, Array& single) {
+  const Array e = linalg::vector_exp<Array>(-c);
+  const Array c2 = c.square();
+  single = (2.0 - e * (c2 + 2.0 * c + 2.0)) / (c2 * c);
+  const auto small = c < kRadialSeriesBelow;
+  if (!small.any()) return;
+  const auto& s = detail::radial_series;
+  constexpr int last = detail::kRadialSeriesTerms - 1;
+  Array series_single = Array::Constant(c.size(), s.single[last]);
+  for (int k = last - 1; k >= 0; --k) series_single = series_single * (-c) + s.single[size_t(k)];
+  single = small.select(series_single, single);
+}
+
 }  // namespace bemshape::bem

@@ -73,6 +73,47 @@ TEST_CASE("radial moments equal their integrals on both sides of the series thre
   // The Laplace limits.
   CHECK(single(0) == Approx(1.0 / 3.0).epsilon(1e-6));
   CHECK(double_layer(0) == Approx(0.5).epsilon(1e-6));
+  // M_V alone, for the coplanar pairs: the same values, bit for bit.
+  Eigen::ArrayXd single_only;
+  yukawa_radial_single_moment(c, single_only);
+  CHECK((single_only == single).all());
+}
+
+TEST_CASE("coplanar touching panels: K exactly 0 and V as the general loop gives it") {
+  // Two triangles sharing the edge (0,0,0)–(1,0,0), the second folded down by an angle α
+  // about that edge. At α = 0 they are coplanar (V alone is summed, K set to 0); at α = 1e−9
+  // the general loop runs, and its V may differ from the coplanar one only by O(α²).
+  auto pair = [](double alpha) {
+    const Eigen::Vector3d a(0, 0, 0), b(1, 0, 0);
+    const Eigen::Vector3d c(0.3, 0.8, 0);
+    const Eigen::Vector3d d(0.6, -0.7 * std::cos(alpha), -0.7 * std::sin(alpha));
+    return std::vector<Panel>{make_panel(a, b, c), make_panel(b, a, d)};
+  };
+  for (const double kappa : {0.0, 1.0, 30.0}) {
+    const std::vector<Panel> flat = pair(0.0), folded = pair(1e-9);
+    struct Entries {
+      double single_layer, double_layer, double_layer_transposed;
+    };
+    auto entries = [&](const std::vector<Panel>& panels) {
+      const TouchingOrder order = *touching_order(panels[0], panels[1]);
+      const SauterSchwabRule& rule = sauter_schwab_rule(order.kind, 8);
+      if (kappa == 0.0) {
+        const auto e = GalerkinOperators<LaplaceKernel>(LaplaceKernel{}, panels)
+                           .touching_pair(panels[0], panels[1], order, rule);
+        return Entries{e.single_layer, e.double_layer, e.double_layer_transposed};
+      }
+      const auto e = GalerkinOperators<YukawaKernel>(YukawaKernel{kappa}, panels)
+                         .touching_pair(panels[0], panels[1], order, rule);
+      return Entries{e.single_layer, e.double_layer, e.double_layer_transposed};
+    };
+    const auto coplanar = entries(flat), general = entries(folded);
+    INFO("kappa " << kappa);
+    CHECK(coplanar.double_layer == 0.0);
+    CHECK(coplanar.double_layer_transposed == 0.0);
+    CHECK(std::abs(general.double_layer) > 0.0);  // the folded pair took the general loop
+    CHECK(std::abs(general.double_layer) < 1e-6 * std::abs(general.single_layer));
+    CHECK(coplanar.single_layer == Approx(general.single_layer).epsilon(1e-12));
+  }
 }
 
 TEST_CASE("Sauter-Schwab rules put every node inside the reference triangle") {
