@@ -61,17 +61,14 @@ const std::array<FarFieldRule, 5>& single_precision_far_field_rules();
 /// single_precision_far_field_rules().
 std::span<const FarFieldRule> far_field_rules(double accuracy);
 
-/// The Gauss rule of `rules` for distance ratio η = ratio and κ·diameter (0 for Laplace), or
-/// nullptr when the polar scheme is needed.
-inline const TriangleRule* select_far_field_rule(double ratio, double kappa_diameter,
-                                                 std::span<const FarFieldRule> rules) {
+/// The Gauss rule of `rules` (far_field_rules() by default) for distance ratio η = ratio and
+/// κ·diameter (0 for Laplace), or nullptr when the polar scheme is needed.
+inline const TriangleRule* select_far_field_rule(
+    double ratio, double kappa_diameter, std::span<const FarFieldRule> rules = far_field_rules()) {
   for (const FarFieldRule& row : rules)
     if (ratio >= row.min_ratio && kappa_diameter <= row.max_kappa_diameter)
       return row.rule;
   return nullptr;
-}
-inline const TriangleRule* select_far_field_rule(double ratio, double kappa_diameter) {
-  return select_far_field_rule(ratio, kappa_diameter, far_field_rules());
 }
 
 /// The same selection from squared distance and squared diameter (no square root, no division:
@@ -117,16 +114,14 @@ std::span<const AttenuatedRule> attenuated_rules(double accuracy);
 
 /// The rule of `rules` (attenuated_far_field_rules() by default) for distance ratio η = ratio
 /// and κ·diameter, or nullptr where no row applies.
-inline const TriangleRule* select_attenuated_rule(double ratio, double kappa_diameter,
-                                                  std::span<const AttenuatedRule> rules) {
+inline const TriangleRule* select_attenuated_rule(
+    double ratio, double kappa_diameter,
+    std::span<const AttenuatedRule> rules = attenuated_far_field_rules()) {
   for (const AttenuatedRule& row : rules)
     if (ratio >= row.min_ratio && kappa_diameter >= row.min_kappa_diameter &&
         kappa_diameter <= row.max_kappa_diameter)
       return row.rule;
   return nullptr;
-}
-inline const TriangleRule* select_attenuated_rule(double ratio, double kappa_diameter) {
-  return select_attenuated_rule(ratio, kappa_diameter, attenuated_far_field_rules());
 }
 
 /// The two sums a quadrature rule needs for both kernels, G = E(r)/(4πr) with E = 1

@@ -44,41 +44,40 @@ inline constexpr RadialSeries radial_series = [] {
 /// Below this c = κρ the series replaces the closed forms.
 inline constexpr double kRadialSeriesBelow = 1.0;
 
-/// M_V(c) and M_K(c) (dimensionless) for every entry of the Eigen array c = κρ > 0.
+namespace detail {
+/// M_V(c) into `single` and, unless `double_layer` is null, M_K(c) into it: one exponential
+/// for both.
 template <class Array>
-void yukawa_radial_moments(const Array& c, Array& single, Array& double_layer) {
+void radial_moments(const Array& c, Array& single, Array* double_layer) {
   const Array e = linalg::vector_exp<Array>(-c);
   const Array c2 = c.square();
   single = (2.0 - e * (c2 + 2.0 * c + 2.0)) / (c2 * c);
-  double_layer = (3.0 - e * (c2 + 3.0 * c + 3.0)) / c2;
+  if (double_layer) *double_layer = (3.0 - e * (c2 + 3.0 * c + 3.0)) / c2;
   const auto small = c < kRadialSeriesBelow;
   if (!small.any()) return;
-  const auto& s = detail::radial_series;
-  constexpr int last = detail::kRadialSeriesTerms - 1;
+  const auto& s = radial_series;
+  constexpr int last = kRadialSeriesTerms - 1;
   Array series_single = Array::Constant(c.size(), s.single[last]);
-  Array series_double = Array::Constant(c.size(), s.double_layer[last]);
-  for (int k = last - 1; k >= 0; --k) {
-    series_single = series_single * (-c) + s.single[size_t(k)];
-    series_double = series_double * (-c) + s.double_layer[size_t(k)];
-  }
+  for (int k = last - 1; k >= 0; --k) series_single = series_single * (-c) + s.single[size_t(k)];
   single = small.select(series_single, single);
-  double_layer = small.select(series_double, double_layer);
+  if (!double_layer) return;
+  Array series_double = Array::Constant(c.size(), s.double_layer[last]);
+  for (int k = last - 1; k >= 0; --k) series_double = series_double * (-c) + s.double_layer[size_t(k)];
+  *double_layer = small.select(series_double, *double_layer);
+}
+}  // namespace detail
+
+/// M_V(c) and M_K(c) (dimensionless) for every entry of the Eigen array c = κρ > 0.
+template <class Array>
+void yukawa_radial_moments(const Array& c, Array& single, Array& double_layer) {
+  detail::radial_moments(c, single, &double_layer);
 }
 
 /// M_V(c) alone, as yukawa_radial_moments gives it: for the pairs whose double layer vanishes
 /// (coplanar touching panels).
 template <class Array>
 void yukawa_radial_single_moment(const Array& c, Array& single) {
-  const Array e = linalg::vector_exp<Array>(-c);
-  const Array c2 = c.square();
-  single = (2.0 - e * (c2 + 2.0 * c + 2.0)) / (c2 * c);
-  const auto small = c < kRadialSeriesBelow;
-  if (!small.any()) return;
-  const auto& s = detail::radial_series;
-  constexpr int last = detail::kRadialSeriesTerms - 1;
-  Array series_single = Array::Constant(c.size(), s.single[last]);
-  for (int k = last - 1; k >= 0; --k) series_single = series_single * (-c) + s.single[size_t(k)];
-  single = small.select(series_single, single);
+  detail::radial_moments(c, single, static_cast<Array*>(nullptr));
 }
 
 }  // namespace bemshape::bem
