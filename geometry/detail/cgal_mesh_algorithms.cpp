@@ -199,7 +199,7 @@ CgalSelfIntersections cgal_self_intersections(const Eigen::MatrixX3d& vertices,
     const double begin = cut[static_cast<std::size_t>(s)], end = cut[static_cast<std::size_t>(s) + 1];
     std::vector<Box> slab;
     if (slabs == 1)
-      slab = boxes;
+      slab = std::move(boxes);  // the only slab: the scan may reorder the boxes themselves
     else
       for (const Box& b : boxes)
         if (b.min_coord(axis) < end && b.max_coord(axis) >= begin) slab.push_back(b);
