@@ -174,27 +174,18 @@ inline std::optional<TouchingOrder> touching_order(const Panel& test, const Pane
                        complete(shared_test), complete(shared_trial)};
 }
 
-/// Gauss points per direction of the Sauter–Schwab rule for a touching pair of `kind`, by the
-/// kernel's κ·diameter (0 for Laplace; the larger panel's diameter). Measured against the
-/// same rule with 16 points on a sphere mesh and on the right-angled edges of a box
-/// (tests/bem/quadrature/test_sauter_schwab_rules.cpp, docs/quadrature.md): the single layer is within
-/// 6e−6 relative and the double layer within 7e−5 of |V|/diameter, the aim being about 1e−5,
-/// far below the discretisation error; the subdivided outer rule used for these pairs before
-/// was off by 2e−3 on coincident pairs. The radial direction is exact (bem/quadrature/radial_moments.hpp);
-/// in the angular ones the Yukawa exponential needs more points as κ·diameter grows, most of
-/// all for vertex neighbours, whose points lie up to two diameters apart.
-inline int touching_rule_points(TouchingKind kind, double kappa_diameter) {
-  struct Row {
-    double max_kappa_diameter;
-    int coincident, common_edge, common_vertex;
-  };
-  static constexpr Row table[] = {{0.0, 6, 6, 5}, {3.0, 6, 6, 5}, {6.0, 7, 7, 6}, {12.0, 8, 7, 9}};
-  for (const Row& row : table)
-    if (kappa_diameter <= row.max_kappa_diameter)
-      return kind == TouchingKind::coincident    ? row.coincident
-             : kind == TouchingKind::common_edge ? row.common_edge
-                                                 : row.common_vertex;
-  return 12;
+/// Gauss points per remaining direction of the Sauter–Schwab rule for a touching pair of
+/// `kind` (bem/quadrature/sauter_schwab_rules.hpp: coincident 6n, edge 5n², vertex 2n³
+/// points). The direction of x − y is exact (bem/quadrature/radial_moments.hpp), so the
+/// errors do not grow with κ·diameter and one n per kind serves every kernel. Measured against
+/// the 16-point limit on a sphere mesh and on the right-angled edges and corners of a box at
+/// κ·diameter 0–150 (tests/bem/quadrature/test_sauter_schwab_rules.cpp, docs/quadrature.md):
+/// within 2e−8 of the row's diagonal entry V_jj in V and within 9e−7·V_jj/diameter in K,
+/// an entry's error counting in proportion to the row it perturbs, not to its own size.
+/// (Coincident pairs cost 6n evaluations: 12 points keep the right-angled ones' row sums
+/// on a plane within 1e−9 where 8 left 5e−7.)
+constexpr int touching_rule_points(TouchingKind kind) {
+  return kind == TouchingKind::coincident ? 12 : kind == TouchingKind::common_edge ? 8 : 7;
 }
 
 template <class Kernel>
@@ -226,9 +217,9 @@ class GalerkinOperators {
   /// rule; the walls read on the labelled parts did not change to six digits. (Touching pairs
   /// use the Sauter–Schwab rules instead.) Beyond κ·diameter = 12 the 6-point rule is again
   /// enough: the trial panel's potential has fallen off within a small part of the test
-  /// panel's area, and the same row sums are within 9.5e−9 with it at κ·diameter 21 (1.4e−8
-  /// with the 12-point rule; the test asks for 1e−7), within 5.6e−4 and 2.1e−4 with either
-  /// at 42 and 71 (the touching pairs' rules set those). The exterior near field of the
+  /// panel's area, and the same row sums are within 2e−8 with it at κ·diameter 21, 42 and 71
+  /// (the tests ask for 1e−7 and 5e−8; there the rows are mostly touching pairs). The exterior
+  /// near field of the
   /// 356 mm tray of
   /// bench/bench_thickness_tools (panels up to κ·diameter 40): 15.0–15.3 → 12.3 s, its
   /// readings unchanged; plate_holes' panels are mostly below 12.
@@ -429,15 +420,14 @@ class GalerkinOperators {
   TouchingPairEntries touching_pair(const Panel& test, const Panel& trial) const {
     const auto order = touching_order(test, trial);
     BEMSHAPE_ASSERT(order.has_value(), "touching_pair: the panels share no corner");
-    const int n = touching_rule_points(order->kind,
-                                       kernel_.kappa() * std::max(test.diameter, trial.diameter));
-    return touching_pair(test, trial, *order, sauter_schwab_rule(order->kind, n));
+    return touching_pair(test, trial, *order, sauter_schwab_rule(order->kind, touching_rule_points(order->kind)));
   }
 
   /// The entries of two touching panels by a Sauter–Schwab rule: with χ_j, χ_k the affine maps
   /// of the reordered panels (Jacobians 2|T_j|, 2|T_k|), both with the shared corner first
   /// (so χ_j(0) = χ_k(0)), and z_q = χ_j(x̂_q) − χ_k(ŷ_q), ρ_q = |z_q|, δ_q = z_q·n_k at the
-  /// rule's nodes (ξ = 1), the radial direction integrated exactly (bem/quadrature/radial_moments.hpp):
+  /// rule's nodes (its m leading variables at 1), the direction of x − y integrated exactly
+  /// (M_V, M_K of bem/quadrature/radial_moments.hpp for the rule's m):
   ///   V = 4|T_j||T_k| Σ_q w_q M_V(κρ_q)/(4πρ_q),  K[j, k] = 4|T_j||T_k| Σ_q w_q δ_q M_K(κρ_q)/(4πρ_q³);
   /// K[k, j] is the same sum with δ'_q = −z_q·n_j (the roles of the points swapped). K vanishes
   /// for coincident and for coplanar panels (δ ≡ δ' ≡ 0, kCoplanarTouchingTolerance) and is
@@ -462,6 +452,10 @@ class GalerkinOperators {
     const double flat = kCoplanarTouchingTolerance *
                         std::max({t1.norm(), t2.norm(), s1.norm(), s2.norm()});
     const bool coplanar = std::max({std::abs(t1n), std::abs(t2n), std::abs(s1m), std::abs(s2m)}) <= flat;
+    // A coincident pair is coplanar; its rule may have no double-layer moment (m = 3).
+    const bool single_only = coplanar || order.kind == TouchingKind::coincident;
+    const int closed = rule.closed_form_variables;
+    const LaplaceRadialMoments laplace = laplace_radial_moments(closed);
     // Evaluated in chunks as Eigen arrays, which vectorise the square roots and exponentials.
     constexpr Eigen::Index chunk = 256;
     using Chunk = Eigen::Array<double, Eigen::Dynamic, 1, 0, chunk, 1>;
@@ -479,21 +473,21 @@ class GalerkinOperators {
       const Chunk zz = x1 * t1.z() + x2 * t2.z() - y1 * s1.z() - y2 * s2.z();
       const Chunk rho2 = zx.square() + zy.square() + zz.square();
       const Chunk inv_rho = rho2.rsqrt();
-      if (coplanar) {
+      if (single_only) {
         if constexpr (Kernel::has_exponential_decay)
-          yukawa_radial_single_moment(Chunk(kernel_.kappa() * rho2 * inv_rho), single);
+          yukawa_radial_moments(closed, Chunk(kernel_.kappa() * rho2 * inv_rho), single, static_cast<Chunk*>(nullptr));
         else
-          single = Chunk::Constant(count, 1.0 / 3.0);
+          single = Chunk::Constant(count, laplace.single);
         sl += (w * single * inv_rho).sum();
         continue;
       }
       if constexpr (Kernel::has_exponential_decay) {
-        yukawa_radial_moments(Chunk(kernel_.kappa() * rho2 * inv_rho), single, double_layer);
+        yukawa_radial_moments(closed, Chunk(kernel_.kappa() * rho2 * inv_rho), single, &double_layer);
         single *= inv_rho;
         double_layer *= inv_rho.cube();
       } else {
-        single = (1.0 / 3.0) * inv_rho;
-        double_layer = 0.5 * inv_rho.cube();
+        single = laplace.single * inv_rho;
+        double_layer = laplace.double_layer * inv_rho.cube();
       }
       // z·n_k: the trial panel's own edges are orthogonal to n_k; −z·n_j likewise.
       const Chunk d = x1 * t1n + x2 * t2n;
@@ -504,7 +498,7 @@ class GalerkinOperators {
       dl_transposed += (wd * d_transposed).sum();
     }
     const double scale = 4.0 * test.area * trial.area * Kernel::inv_four_pi;
-    if (order.kind == TouchingKind::coincident || coplanar) return {scale * sl, 0.0, 0.0};
+    if (single_only) return {scale * sl, 0.0, 0.0};
     return {scale * sl, scale * dl, scale * dl_transposed};
   }
 

@@ -50,7 +50,7 @@ Point4 common_vertex(int region, double xi, double e1, double e2, double e3) {
   return {xi * e2, xi * e2 * e3, xi, xi * e1, j};
 }
 
-SauterSchwabRule make_rule(TouchingKind kind, int n) {
+SauterSchwabRule make_rule(TouchingKind kind, int n, int m) {
   const GaussLegendreRule& gl = gauss_legendre(n);
   std::vector<double> t(static_cast<size_t>(n)), w(static_cast<size_t>(n));
   for (int i = 0; i < n; ++i) {
@@ -58,15 +58,20 @@ SauterSchwabRule make_rule(TouchingKind kind, int n) {
     w[size_t(i)] = 0.5 * gl.weights[size_t(i)];
   }
   const int regions = kind == TouchingKind::coincident ? 6 : kind == TouchingKind::common_edge ? 5 : 2;
+  // The m leading variables of (ξ, η1, η2, η3) are at 1 (the caller integrates them); the
+  // others run over the Gauss points, a single point of weight 1 standing for a fixed one.
+  const int n1 = m >= 2 ? 1 : n, n2 = m >= 3 ? 1 : n;
   SauterSchwabRule rule;
-  const size_t size = size_t(regions) * size_t(n) * size_t(n) * size_t(n);
+  rule.closed_form_variables = m;
+  const size_t size = size_t(regions) * size_t(n1) * size_t(n2) * size_t(n);
   for (auto* v : {&rule.x1, &rule.x2, &rule.y1, &rule.y2, &rule.weight}) v->reserve(size);
-  // ξ = 1: the radial direction is the caller's (see the header).
   for (int region = 0; region < regions; ++region)
-    for (int b = 0; b < n; ++b)
-      for (int c = 0; c < n; ++c)
+    for (int b = 0; b < n1; ++b)
+      for (int c = 0; c < n2; ++c)
         for (int d = 0; d < n; ++d) {
-          const double e1 = t[size_t(b)], e2 = t[size_t(c)], e3 = t[size_t(d)];
+          const double e1 = n1 == 1 ? 1.0 : t[size_t(b)], e2 = n2 == 1 ? 1.0 : t[size_t(c)];
+          const double e3 = t[size_t(d)];
+          const double weight = (n1 == 1 ? 1.0 : w[size_t(b)]) * (n2 == 1 ? 1.0 : w[size_t(c)]) * w[size_t(d)];
           const Point4 p = kind == TouchingKind::coincident ? coincident(region, 1.0, e1, e2, e3)
                            : kind == TouchingKind::common_edge
                                ? common_edge(region, 1.0, e1, e2, e3)
@@ -75,22 +80,28 @@ SauterSchwabRule make_rule(TouchingKind kind, int n) {
           rule.x2.push_back(p.x2);
           rule.y1.push_back(p.y1);
           rule.y2.push_back(p.y2);
-          rule.weight.push_back(p.jacobian * w[size_t(b)] * w[size_t(c)] * w[size_t(d)]);
+          // The Jacobian at the node: its factors in the leading variables are 1 there, so
+          // what is left are those in the Gauss variables.
+          rule.weight.push_back(p.jacobian * weight);
         }
   return rule;
 }
 
 }  // namespace
 
-const SauterSchwabRule& sauter_schwab_rule(TouchingKind kind, int n) {
+const SauterSchwabRule& sauter_schwab_rule(TouchingKind kind, int n, int m) {
   if (n < 1 || n > kMaxPoints)
     throw InternalError("sauter_schwab_rule: n = " + std::to_string(n) + " outside [1, " +
                         std::to_string(kMaxPoints) + "]");
-  static std::array<std::array<SauterSchwabRule, kMaxPoints + 1>, 3> rules;
-  static std::array<std::array<std::once_flag, kMaxPoints + 1>, 3> built;
-  const auto k = static_cast<size_t>(kind);
-  std::call_once(built[k][size_t(n)], [&] { rules[k][size_t(n)] = make_rule(kind, n); });
-  return rules[k][size_t(n)];
+  if (m < 1 || m > max_closed_form_variables(kind))
+    throw InternalError("sauter_schwab_rule: " + std::to_string(m) +
+                        " variables in closed form, the maps of this kind allow 1 to " +
+                        std::to_string(max_closed_form_variables(kind)));
+  static std::array<std::array<std::array<SauterSchwabRule, kMaxPoints + 1>, 3>, 3> rules;
+  static std::array<std::array<std::array<std::once_flag, kMaxPoints + 1>, 3>, 3> built;
+  const auto k = static_cast<size_t>(kind), v = static_cast<size_t>(m - 1);
+  std::call_once(built[k][v][size_t(n)], [&] { rules[k][v][size_t(n)] = make_rule(kind, n, m); });
+  return rules[k][v][size_t(n)];
 }
 
 }  // namespace bemshape::bem

@@ -406,9 +406,9 @@ TEST_CASE(
 }
 
 TEST_CASE("thickness clamped to 0: warned and counted exactly when the minimum is 0") {
-  // The cylinder of diameter 2 at --h0 4, read by the sphere at the surface: the default
-  // element size 1.2 is coarse for its curvature, and a few side faces get an inverse
-  // thickness above 1/a. At --max-edge 0.6 none do. The count must be the solver faces the
+  // The cylinder of diameter 2 at --h0 4, read by the sphere at the surface: at --max-edge
+  // 1.5 the elements are coarse for its curvature, and a few side faces get an inverse
+  // thickness above 1/a (none at the default size 1.2 nor at 0.6). The count must be the solver faces the
   // report's minimum comes from, so the warning and clamped_faces appear exactly when the
   // minimum is 0. (The wall measure reads 1.97 there: it reads h_p at the axis, not at the
   // coarse surface.)
@@ -422,7 +422,7 @@ TEST_CASE("thickness clamped to 0: warned and counted exactly when the minimum i
     REQUIRE(r.exit_code == 0);
     return std::pair{r.out, read_json(json)};
   };
-  const auto [coarse_out, coarse] = run("", "clamp_coarse");
+  const auto [coarse_out, coarse] = run(" --max-edge 1.5", "clamp_coarse");
   CHECK(coarse["thickness"]["min"].get<double>() == 0.0);
   CHECK(coarse["thickness"]["clamped_faces"].get<long>() > 0);
   CHECK(coarse["thickness"]["clamped_faces"].get<long>() < 10);

@@ -29,17 +29,20 @@ Eigen::MatrixXd assemble(const std::vector<Panel>& panels, auto kernel, bool dou
   return m;
 }
 
-/// On a 2×2 square meshed with edges of 0.1, the row sums of Vκ of the panels further than
-/// 20/κ from the border, which see an infinite plane up to e^{−20}, divided by their areas
-/// are 1/(2κ) within `tolerance`; those panels are more than `min_kappa_diameter`/κ across.
+/// On a 2×2 square meshed with edges of 0.1, the row sums of Vκ of the panels whose corners
+/// are all further than 20/κ from the border, which see an infinite plane up to e^{−20},
+/// divided by their areas are 1/(2κ) within `tolerance`; those panels are more than
+/// `min_kappa_diameter`/κ across.
 void check_plane_row_sums(double kappa, double tolerance, double min_kappa_diameter = 0.0) {
   const auto box = geometry::make_box(Eigen::Vector3d(-1, -1, -1), Eigen::Vector3d(1, 1, 0), 0.1);
   const auto panels = make_panels(box);
   const GalerkinOperators op(YukawaKernel{kappa}, panels);
   int checked = 0;
   for (Eigen::Index j = 0; j < box.num_faces(); j += 7) {
-    const Eigen::Vector3d c = box.face_centroids().row(j).transpose();
-    if (c.z() < -1e-12 || c.head<2>().cwiseAbs().maxCoeff() > 1.0 - 20.0 / kappa) continue;
+    const Panel& panel = panels[size_t(j)];
+    double border = 0.0;  // the largest |x| or |y| of a corner
+    for (const auto& corner : panel.corners) border = std::max(border, corner.head<2>().cwiseAbs().maxCoeff());
+    if (panel.centroid.z() < -1e-12 || border > 1.0 - 20.0 / kappa) continue;
     REQUIRE(kappa * panels[size_t(j)].diameter > min_kappa_diameter);
     double sum = 0.0;
     for (Eigen::Index k = 0; k < box.num_faces(); ++k) sum += op.entry(j, k).single_layer;
@@ -94,6 +97,13 @@ TEST_CASE("Yukawa single layer on a flat panel at kappa*diameter 21 (the 6-point
   // κ = 150: panels 21/κ across, whose near pairs that do not touch take the 6-point outer
   // rule (GalerkinOperators::near_outer_rule).
   check_plane_row_sums(150.0, 1e-7, 12.0);
+}
+
+TEST_CASE("Yukawa single layer on a flat panel at kappa*diameter 42 and 71 tends to 1/(2κ)") {
+  // κ = 300 and 500: panels 42/κ and 71/κ across, where the row is mostly its touching
+  // pairs, whose rules integrate along x − y in closed form.
+  check_plane_row_sums(300.0, 5e-8, 40.0);
+  check_plane_row_sums(500.0, 5e-8, 70.0);
 }
 
 TEST_CASE("Yukawa near pairs: a small test panel a gap of 1-6 diameters from a large trial "
