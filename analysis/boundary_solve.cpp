@@ -25,9 +25,9 @@ void validate(const SolveOptions& options) {
   if (options.max_edge && !(std::isfinite(*options.max_edge) && *options.max_edge > 0.0))
     throw InputError("--max-edge must be a positive length, got " +
                      number_text(*options.max_edge, 3));
-  if (!(options.solver.tolerance > 0.0 && options.solver.tolerance < 1.0))
+  if (options.solver.tolerance && !(*options.solver.tolerance > 0.0 && *options.solver.tolerance < 1.0))
     throw InputError("--tolerance must be in (0, 1), got " +
-                     number_text(options.solver.tolerance, 3));
+                     number_text(*options.solver.tolerance, 3));
 }
 
 geometry::GradedMeshParameters wall_reading_mesh_parameters(double h0, double a,
@@ -117,9 +117,10 @@ std::uint64_t mesh_and_solve(const geometry::PreparedMesh& input, const SolveOpt
   if (solver.method == SolverMethod::hmatrix ||
       (solver.method == SolverMethod::automatic && faces > auto_dense_faces(graded))) {
     bem::HMatrixSolverOptions hmatrix;
-    hmatrix.tolerance = solver.tolerance;
-    hmatrix.aca_tolerance = kCompressionToleranceRatio * solver.tolerance;
-    hmatrix.single_precision = solver.tolerance >= bem::kSinglePrecisionStorageTolerance;
+    const double tolerance = solver_tolerance(options);
+    hmatrix.tolerance = tolerance;
+    hmatrix.aca_tolerance = kCompressionToleranceRatio * tolerance;
+    hmatrix.single_precision = tolerance >= bem::kSinglePrecisionStorageTolerance;
     hmatrix.max_memory_bytes = options.max_memory_bytes;
     hmatrix.far_field = solver.far_field;
     hmatrix.estimate_only = check_only;

@@ -36,8 +36,9 @@ enum class SolverMethod {
 /// Which linear solver runs and how (the command line's --solver, --far-field, --tolerance).
 struct SolverChoice {
   SolverMethod method = SolverMethod::automatic;
-  /// Relative residual the iterative (H-matrix) path must reach, in (0, 1).
-  double tolerance = 1e-6;
+  /// Relative residual the iterative (H-matrix) path must reach, in (0, 1); empty: the
+  /// default of what is read (solver_tolerance).
+  std::optional<double> tolerance;
   /// How the H-matrix path keeps the Laplace far field: automatic (the H-matrix's own
   /// factors where they fit in memory, the H² form where not), hmatrix or nested (H²).
   bem::HMatrixSolverOptions::FarField far_field = bem::HMatrixSolverOptions::FarField::automatic;
@@ -142,6 +143,20 @@ inline constexpr double kWallMeshCurveTurn = 15.0;
 /// bench/bench_thickness_tools did not change in their four digits.
 inline constexpr double kCompressionToleranceRatio = 1.0;
 
+/// The GMRES relative residual (--tolerance) where none is given, by what is read. Values of
+/// s and ∇s on the surface and at points (the sphere and paper measures, `features`,
+/// `compare`): 1e−6, about the relative error of φ and q. The wall reading takes the zero of
+/// s half a wall deep, where an error δ of s relative to its scale moves the zero by about δ
+/// of the wall; 1e−5 moves the readings by less than that: on the fine exports of
+/// bench/bench_thickness_tools the medians, p05 and p95 of every labelled part, of
+/// plate_holes and of the 356 mm tray did not change in their four digits (plate_holes
+/// 12.6961 both, p95 12.7050 → 12.7048), the tray took 26 iterations → 21, its assembly
+/// 13.0 → 11.3 s (the compression tolerance follows, kCompressionToleranceRatio) and its run
+/// 24.1 → 20.0 s. At 1e−4 the readings move by up to 4e−4 of the wall (the tray's thickest
+/// reading 10.3035 → 10.2997) for another 2.6 s there.
+inline constexpr double kSurfaceValuesTolerance = 1e-6;
+inline constexpr double kWallReadingTolerance = 1e-5;
+
 /// Meshes --fit-memory tries after the refused one before it refuses too.
 inline constexpr int kMemoryFitAttempts = 4;
 
@@ -174,6 +189,15 @@ struct MemoryFit {
   double budget_bytes = 0.0;      ///< what may be used [bytes]
   int attempts = 0;               ///< meshes refused before the one solved on
 };
+
+/// The GMRES relative residual of a solve: options.solver.tolerance if given, else
+/// kWallReadingTolerance for SolverMeshRule::wall_reading and kSurfaceValuesTolerance for
+/// surface values.
+inline double solver_tolerance(const SolveOptions& options) {
+  return options.solver.tolerance.value_or(options.mesh_rule == SolverMeshRule::wall_reading
+                                               ? kWallReadingTolerance
+                                               : kSurfaceValuesTolerance);
+}
 
 /// Throws InputError naming the first option out of its range (h0, a, sharp angle,
 /// max edge, tolerance), before anything is read or computed.

@@ -46,7 +46,7 @@ FeaturesResult measure(FeaturesResult result, const FeaturesOptions& options,
     // The treecode's error tracks the solver's: no larger than the residual asked for.
     bem::PotentialEvaluationOptions evaluation;
     evaluation.treecode =
-        bem::LaplaceTreecodeParameters::for_tolerance(options.solve.solver.tolerance);
+        bem::LaplaceTreecodeParameters::for_tolerance(solver_tolerance(options.solve));
     return bem::evaluate_potential(result.boundary.solver_mesh, result.boundary.solution,
                                    result.points, progress, evaluation);
   });

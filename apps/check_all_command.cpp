@@ -96,9 +96,7 @@ std::vector<std::string> result_arguments(const CheckAllOptions& o) {
                                    "--solver",
                                    o.solver.method,
                                    "--far-field",
-                                   o.solver.far_field,
-                                   "--tolerance",
-                                   number_text(o.solver.tolerance, kExactDigits)};
+                                   o.solver.far_field};
   const auto add = [&args](const char* name, const std::optional<double>& value) {
     if (value) {
       args.push_back(name);
@@ -106,6 +104,7 @@ std::vector<std::string> result_arguments(const CheckAllOptions& o) {
     }
   };
   add("--h0", o.h0);
+  add("--tolerance", o.solver.tolerance);
   add("--sharp-angle", o.sharp_angle);
   add("--max-thickness", o.max_thickness);
   add("--min-region-area", o.min_region_area);

@@ -16,7 +16,7 @@ namespace bemshape::apps {
 /// --solver, --far-field and --tolerance as typed (solver_choice checks the names).
 struct SolverChoiceText {
   std::string method = "auto";     ///< auto | dense | hmatrix
-  double tolerance = 1e-6;         ///< GMRES relative residual
+  std::optional<double> tolerance;  ///< GMRES relative residual; empty: by what is read
   std::string far_field = "auto";  ///< auto | hmatrix | nested
 };
 

@@ -30,7 +30,7 @@ struct Outcome {
 py::dict features(const py::handle& V, const py::handle& F, const py::handle& points, double h0,
                   double a, std::optional<double> skeleton_width, std::optional<double> max_edge,
                   std::optional<double> sharp_angle, const std::string& solver,
-                  const std::string& far_field, double tolerance, std::optional<int> threads,
+                  const std::string& far_field, std::optional<double> tolerance, std::optional<int> threads,
                   std::optional<double> max_memory, py::object progress,
                   const std::string& name) {
   const Eigen::MatrixX3d vertices = positions_from_array(V, "V");
@@ -97,11 +97,11 @@ void register_features_function(py::module_& module) {
       py::arg("h0"), py::arg("a") = 0.2, py::arg("skeleton_width") = py::none(),
       py::arg("max_edge") = py::none(), py::arg("sharp_angle") = py::none(),
       py::arg("solver") = solver.method, py::arg("far_field") = solver.far_field,
-      py::arg("tolerance") = solver.tolerance, py::arg("threads") = py::none(),
+      py::arg("tolerance") = py::none(), py::arg("threads") = py::none(),
       py::arg("max_memory") = py::none(), py::arg("progress") = py::none(),
       py::arg("name") = "numpy arrays",
       R"(features(V, F, points, *, h0, a=0.2, skeleton_width=None, max_edge=None,
-         sharp_angle=None, solver="auto", far_field="auto", tolerance=1e-6, threads=None,
+         sharp_angle=None, solver="auto", far_field="auto", tolerance=None, threads=None,
          max_memory=None, progress=None, name="numpy arrays") -> dict
 
 The shape features at `points` (float (P, 3)) of the solid bounded by F over V, as

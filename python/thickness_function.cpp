@@ -74,7 +74,7 @@ py::dict thickness(const py::handle& V, const py::handle& F, std::optional<doubl
                    std::optional<double> min_thickness, std::optional<double> max_thickness,
                    std::optional<std::string> measure, double a, std::optional<double> max_edge,
                    std::optional<double> sharp_angle, const std::string& solver,
-                   const std::string& far_field, double tolerance, std::optional<int> threads,
+                   const std::string& far_field, std::optional<double> tolerance, std::optional<int> threads,
                    std::optional<double> max_memory, bool fit_memory, py::object progress,
                    const std::string& name, std::optional<double> min_region_area,
                    bool units_check) {
@@ -177,13 +177,13 @@ void register_thickness_function(py::module_& module) {
       py::arg("max_thickness") = py::none(), py::arg("measure") = py::none(),
       py::arg("a") = 0.2, py::arg("max_edge") = py::none(), py::arg("sharp_angle") = py::none(),
       py::arg("solver") = solver.method, py::arg("far_field") = solver.far_field,
-      py::arg("tolerance") = solver.tolerance, py::arg("threads") = py::none(),
+      py::arg("tolerance") = py::none(), py::arg("threads") = py::none(),
       py::arg("max_memory") = py::none(), py::arg("fit_memory") = false,
       py::arg("progress") = py::none(), py::arg("name") = "numpy arrays",
       py::arg("min_region_area") = py::none(), py::arg("units_check") = true,
       R"(thickness(V, F, *, h0=None, min_thickness=None, max_thickness=None, measure=None,
           a=0.2, max_edge=None, sharp_angle=None, solver="auto", far_field="auto",
-          tolerance=1e-6, threads=None, max_memory=None, fit_memory=False, progress=None,
+          tolerance=None, threads=None, max_memory=None, fit_memory=False, progress=None,
           name="numpy arrays", min_region_area=None, units_check=True) -> dict
 
 The local wall thickness of the solid bounded by the triangles F (int (m, 3), 0-based) over
