@@ -219,10 +219,8 @@ class GalerkinOperators {
   /// enough: the trial panel's potential has fallen off within a small part of the test
   /// panel's area, and the same row sums are within 2e−8 with it at κ·diameter 21, 42 and 71
   /// (the tests ask for 1e−7 and 5e−8; there the rows are mostly touching pairs). The exterior
-  /// near field of the
-  /// 356 mm tray of
-  /// bench/bench_thickness_tools (panels up to κ·diameter 40): 15.0–15.3 → 12.3 s, its
-  /// readings unchanged; plate_holes' panels are mostly below 12.
+  /// near field of the 356 mm tray of bench/bench_thickness_tools (panels up to κ·diameter
+  /// 40): 15.0–15.3 → 12.3 s, its readings unchanged; plate_holes' panels are mostly below 12.
   const TriangleRule& near_outer_rule(const Panel& test) const {
     const double kappa_diameter = kernel_.kappa() * test.diameter;
     return symmetric_triangle_rule(kappa_diameter <= 4.0 || kappa_diameter > 12.0 ? 4 : 6);
@@ -420,7 +418,8 @@ class GalerkinOperators {
   TouchingPairEntries touching_pair(const Panel& test, const Panel& trial) const {
     const auto order = touching_order(test, trial);
     BEMSHAPE_ASSERT(order.has_value(), "touching_pair: the panels share no corner");
-    return touching_pair(test, trial, *order, sauter_schwab_rule(order->kind, touching_rule_points(order->kind)));
+    return touching_pair(test, trial, *order,
+                         sauter_schwab_rule(order->kind, touching_rule_points(order->kind)));
   }
 
   /// The entries of two touching panels by a Sauter–Schwab rule: with χ_j, χ_k the affine maps
@@ -475,7 +474,8 @@ class GalerkinOperators {
       const Chunk inv_rho = rho2.rsqrt();
       if (single_only) {
         if constexpr (Kernel::has_exponential_decay)
-          yukawa_radial_moments(closed, Chunk(kernel_.kappa() * rho2 * inv_rho), single, static_cast<Chunk*>(nullptr));
+          yukawa_radial_moments(closed, Chunk(kernel_.kappa() * rho2 * inv_rho), single,
+                                static_cast<Chunk*>(nullptr));
         else
           single = Chunk::Constant(count, laplace.single);
         sl += (w * single * inv_rho).sum();
