@@ -185,3 +185,40 @@ TEST_CASE("measure_thickness: an 81,920-face sphere, h_p and h_f within 2 % at e
   CHECK(hp_error < 0.02);
   CHECK(hf_error < 0.02);
 }
+
+TEST_CASE("measure_thickness: the wall reading solves to 1e-5 unless --tolerance says otherwise, "
+          "and reads the same walls as at 1e-6") {
+  // A 100 × 80 × 4 plate on the H-matrix path: without a tolerance the wall reading's GMRES
+  // stops at analysis::kWallReadingTolerance, with 1e-6 it goes on; the zero of s half a wall
+  // deep moves by about the relative error of s, so the readings agree to 1e-5 of the wall.
+  const std::filesystem::path path = std::filesystem::temp_directory_path() /
+                                     ("bemshape_analysis_plate_" + std::to_string(::getpid()) + ".stl");
+  const geometry::SurfaceMesh plate =
+      geometry::make_box(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(100, 80, 4), 100.0);
+  output::write_binary_stl(path.string(), plate.vertices(), plate.faces());
+  const auto read = [&](std::optional<double> tolerance) {
+    analysis::ThicknessOptions options;
+    options.solve.h0 = 3.6;
+    options.solve.solver.method = analysis::SolverMethod::hmatrix;
+    options.solve.solver.tolerance = tolerance;
+    return analysis::measure_thickness(path, options);
+  };
+  const analysis::ThicknessResult by_default = read(std::nullopt);
+  const analysis::ThicknessResult tight = read(1e-6);
+  std::error_code ignored;
+  std::filesystem::remove(path, ignored);
+  const auto& loose_report = by_default.boundary.solution.report;
+  const auto& tight_report = tight.boundary.solution.report;
+  CAPTURE(loose_report.iterations, tight_report.iterations, loose_report.preconditioned_residual,
+          tight_report.preconditioned_residual);
+  CHECK(loose_report.preconditioned_residual <= analysis::kWallReadingTolerance);
+  CHECK(loose_report.preconditioned_residual > analysis::kSurfaceValuesTolerance);
+  CHECK(tight_report.preconditioned_residual <= 1e-6);
+  CHECK(loose_report.iterations < tight_report.iterations);
+  const auto& a = by_default.statistics;
+  const auto& b = tight.statistics;
+  CAPTURE(a.median, b.median, a.p05, b.p05, a.p95, b.p95);
+  CHECK(a.median == Approx(4.0).epsilon(0.01));
+  for (const auto& [x, y] : {std::pair{a.median, b.median}, {a.p05, b.p05}, {a.p95, b.p95}})
+    CHECK(std::abs(x - y) <= 1e-5 * 4.0);
+}
