@@ -25,9 +25,9 @@ void validate(const SolveOptions& options) {
   if (options.max_edge && !(std::isfinite(*options.max_edge) && *options.max_edge > 0.0))
     throw InputError("--max-edge must be a positive length, got " +
                      number_text(*options.max_edge, 3));
-  if (options.solver.tolerance && !(*options.solver.tolerance > 0.0 && *options.solver.tolerance < 1.0))
-    throw InputError("--tolerance must be in (0, 1), got " +
-                     number_text(*options.solver.tolerance, 3));
+  const std::optional<double>& tolerance = options.solver.tolerance;
+  if (tolerance && !(*tolerance > 0.0 && *tolerance < 1.0))
+    throw InputError("--tolerance must be in (0, 1), got " + number_text(*tolerance, 3));
 }
 
 geometry::GradedMeshParameters wall_reading_mesh_parameters(double h0, double a,

@@ -30,7 +30,8 @@ struct Outcome {
 py::dict features(const py::handle& V, const py::handle& F, const py::handle& points, double h0,
                   double a, std::optional<double> skeleton_width, std::optional<double> max_edge,
                   std::optional<double> sharp_angle, const std::string& solver,
-                  const std::string& far_field, std::optional<double> tolerance, std::optional<int> threads,
+                  const std::string& far_field, std::optional<double> tolerance,
+                  std::optional<int> threads,
                   std::optional<double> max_memory, py::object progress,
                   const std::string& name) {
   const Eigen::MatrixX3d vertices = positions_from_array(V, "V");

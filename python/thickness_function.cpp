@@ -74,7 +74,8 @@ py::dict thickness(const py::handle& V, const py::handle& F, std::optional<doubl
                    std::optional<double> min_thickness, std::optional<double> max_thickness,
                    std::optional<std::string> measure, double a, std::optional<double> max_edge,
                    std::optional<double> sharp_angle, const std::string& solver,
-                   const std::string& far_field, std::optional<double> tolerance, std::optional<int> threads,
+                   const std::string& far_field, std::optional<double> tolerance,
+                   std::optional<int> threads,
                    std::optional<double> max_memory, bool fit_memory, py::object progress,
                    const std::string& name, std::optional<double> min_region_area,
                    bool units_check) {

@@ -482,7 +482,8 @@ class GalerkinOperators {
         continue;
       }
       if constexpr (Kernel::has_exponential_decay) {
-        yukawa_radial_moments(closed, Chunk(kernel_.kappa() * rho2 * inv_rho), single, &double_layer);
+        yukawa_radial_moments(closed, Chunk(kernel_.kappa() * rho2 * inv_rho), single,
+                              &double_layer);
         single *= inv_rho;
         double_layer *= inv_rho.cube();
       } else {

@@ -113,7 +113,8 @@ void yukawa_radial_moments(int m, const Array& c, Array& single, Array* double_l
   const auto& s = detail::radial_series;
   single = small.select(detail::radial_series_sum(s.single[size_t(m - 1)], c), single);
   if (double_layer)
-    *double_layer = small.select(detail::radial_series_sum(s.double_layer[size_t(m - 1)], c), *double_layer);
+    *double_layer =
+        small.select(detail::radial_series_sum(s.double_layer[size_t(m - 1)], c), *double_layer);
 }
 
 }  // namespace bemshape::bem

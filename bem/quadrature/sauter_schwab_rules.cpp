@@ -60,7 +60,8 @@ SauterSchwabRule make_rule(TouchingKind kind, int n, int m) {
   const int regions = kind == TouchingKind::coincident ? 6 : kind == TouchingKind::common_edge ? 5 : 2;
   // The m leading variables of (ξ, η1, η2, η3) are at 1 (the caller integrates them); the
   // others run over the Gauss points, a single point of weight 1 standing for a fixed one.
-  const int n1 = m >= 2 ? 1 : n, n2 = m >= 3 ? 1 : n;
+  const bool fixed1 = m >= 2, fixed2 = m >= 3;  // η1, η2 at 1
+  const int n1 = fixed1 ? 1 : n, n2 = fixed2 ? 1 : n;
   SauterSchwabRule rule;
   rule.closed_form_variables = m;
   const size_t size = size_t(regions) * size_t(n1) * size_t(n2) * size_t(n);
@@ -69,9 +70,10 @@ SauterSchwabRule make_rule(TouchingKind kind, int n, int m) {
     for (int b = 0; b < n1; ++b)
       for (int c = 0; c < n2; ++c)
         for (int d = 0; d < n; ++d) {
-          const double e1 = n1 == 1 ? 1.0 : t[size_t(b)], e2 = n2 == 1 ? 1.0 : t[size_t(c)];
+          const double e1 = fixed1 ? 1.0 : t[size_t(b)], e2 = fixed2 ? 1.0 : t[size_t(c)];
           const double e3 = t[size_t(d)];
-          const double weight = (n1 == 1 ? 1.0 : w[size_t(b)]) * (n2 == 1 ? 1.0 : w[size_t(c)]) * w[size_t(d)];
+          const double weight =
+              (fixed1 ? 1.0 : w[size_t(b)]) * (fixed2 ? 1.0 : w[size_t(c)]) * w[size_t(d)];
           const Point4 p = kind == TouchingKind::coincident ? coincident(region, 1.0, e1, e2, e3)
                            : kind == TouchingKind::common_edge
                                ? common_edge(region, 1.0, e1, e2, e3)

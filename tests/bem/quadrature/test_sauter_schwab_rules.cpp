@@ -176,6 +176,14 @@ TEST_CASE("Sauter-Schwab rules put every node inside the reference triangle") {
     }
 }
 
+TEST_CASE("Sauter-Schwab rules of one point per direction put it at the midpoint") {
+  // n = 1: the Gauss variables at 1/2, only the closed-form ones at 1. Vertex region 0 maps
+  // x̂ = (ξ, ξη1); edge region 0 x̂ = (ξ, ξη1η3), with η1 in closed form for m = 2.
+  CHECK(sauter_schwab_rule(TouchingKind::common_vertex, 1, 1).x2[0] == 0.5);
+  CHECK(sauter_schwab_rule(TouchingKind::common_edge, 1, 1).x2[0] == 0.25);
+  CHECK(sauter_schwab_rule(TouchingKind::common_edge, 1, 2).x2[0] == 0.5);
+}
+
 TEST_CASE("touching_order puts the shared corners first in both panels") {
   const Eigen::Vector3d p(0, 0, 0), q(1, 0, 0), r(0, 1, 0), s(1, 1, 0.4), t(-1, -0.5, 0.2);
   const Panel a = make_panel(p, q, r);
