@@ -25,8 +25,6 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 /// step on flat and curved walls, the growth steps of a search along a wall stop at
 /// kAlongWallDepthRatio, and a bracket shrinks superlinearly.
 constexpr int kMaxSteps = 16;
-/// A Newton step forward before the zero is bracketed goes at most this factor deeper.
-constexpr double kMaxNewtonGrowth = 4.0;
 /// The first step is at least this fraction of h0 deep.
 constexpr double kMinDepthRatio = 1e-3;
 /// A search that must go deeper than this times the wall read at its current point runs
@@ -130,9 +128,10 @@ class MidSurfaceSearch {
         if (!(next > lo && next < hi)) next = lo - g_lo * (hi - lo) / (g_hi - g_lo);
         if (hi - lo <= kDepthTolerance * lo) next = std::abs(g_lo) <= std::abs(g_hi) ? lo : hi;
       } else {
-        // Not bracketed: forward, at least by kDepthGrowth and at most by kMaxNewtonGrowth.
+        // Not bracketed: Newton's step where it goes forward (from a convex g it approaches
+        // the zero from this side), else by kDepthGrowth; at most kMaxNewtonGrowth deeper.
         if (!(next > tau)) next = kDepthGrowth * tau;
-        next = std::clamp(next, kDepthGrowth * tau, kMaxNewtonGrowth * tau);
+        next = std::min(next, kMaxNewtonGrowth * tau);
         // The search runs along a wall (from a rim face, a hole's wall, the end of a rib), not
         // across it: the wall the field reads here lies across another direction than n, or
         // its mid-surface would be far deeper than that wall is thick.
