@@ -51,6 +51,9 @@ constexpr double kAlongWallCosine = 0.5;
 /// median by 0.13 % (docs/benchmarks.md, "What was tried and did not pay").
 constexpr int kTreecodeOrder = 7;
 constexpr double kTreecodeTheta = 0.5;
+/// A partner reading a rim (rim indicator from features::kRimFull on) must read at least
+/// this fraction of the pair's separation as its own h_mid (see the pairing below).
+constexpr double kPartnerReadingRatio = 0.5;
 /// Panels per leaf of the treecode's cluster tree: smaller leaves than the evaluation of
 /// `features` (16), so that fewer panels near a point are integrated exactly.
 constexpr Eigen::Index kLeafSize = 8;
@@ -256,6 +259,20 @@ WallThickness wall_thickness(const geometry::SurfaceMesh& mesh,
                 !features::oblique(result.alignment(f));
   }
   MidSurfacePairs pairs = mid_surface_pairs(mesh, result.mid_point, result.depth, found, across);
+  // A partner whose own field reads a rim and a wall under half the pair's separation is no
+  // skin across that wall: a noisy face on a convex edge, tilted towards the neighbouring
+  // wall, whose search found the zero of s·n in the edge's wedge before leaving the solid
+  // (on plate_holes' σ = 3 % copy: rim indicator 1.9, h_mid 2.9 against a separation of
+  // 8–10 from the rounded edge across the plate; the skins of a tray's floor beside its
+  // pocket, rim indicators 0.1–0.2, keep their pairs at h_mid = 0.49 of the separation).
+  for (Eigen::Index f = 0; f < nf; ++f) {
+    const int g = pairs.partner(f);
+    if (g >= 0 && result.rim_indicator(g) >= features::kRimFull &&
+        !(result.mid_thickness(g) >= kPartnerReadingRatio * pairs.thickness(f))) {
+      pairs.thickness(f) = kNaN;
+      pairs.partner(f) = -1;
+    }
+  }
   result.pair_thickness = separation_at_scale(mesh, pairs.thickness,
                                               kSeparationScaleRatio * parameters.h0);
   result.partner = std::move(pairs.partner);

@@ -86,6 +86,9 @@ inline constexpr double kJunctionRatio = 1.05;
 /// half a wall of a true rim h_mid reads 10–50 % above 2τ0. At 5 % the noisy faces near the
 /// rims of the noisy L-bracket (σ 3 % of t) kept h_mid and read a second thin region
 /// (tests/analysis/test_thickness_scale.cpp); 2.5 % keeps the wedge's readings and not those.
+/// It applies below kRimFull only: in the wedge of a noisy convex edge a tilted face's search
+/// finds a zero of s·n a fraction of the wall deep where h_mid and 2τ0 agree at that fraction
+/// (0.29 on the 6 mm end of the σ = 3 % taper, rim indicator 2.5).
 inline constexpr double kRimAgreement = 0.025;
 /// h_twice above this multiple of h_mid means the search ran along the wall, not across it.
 inline constexpr double kAlongWallRatio = 1.5;
@@ -120,9 +123,9 @@ inline double rim_weight(double rim_indicator) {
 /// junction). NaN — the face takes its neighbours' reading — where neither is the face's own
 /// wall: the search ran along the wall (`twice_depth` > kAlongWallRatio·h_mid) or crossed it
 /// obliquely (`alignment`, see oblique()), or the face is near a rim (rim indicator above
-/// kRimFrom), has no pair and twice its depth is more than kRimAgreement from h_mid (where it
-/// is within, a taper: h_mid). `twice_depth` may be NaN (no mid-surface point found along the
-/// normal): h_mid is used.
+/// kRimFrom), has no pair and its rim indicator is kRimFull or more or twice its depth is more
+/// than kRimAgreement from h_mid (where it is within, a taper: h_mid). `twice_depth` may be
+/// NaN (no mid-surface point found along the normal): h_mid is used.
 inline double wall_thickness(double mid_thickness, double twice_depth, double rim_indicator,
                              double pair_thickness = std::numeric_limits<double>::quiet_NaN(),
                              double alignment = std::numeric_limits<double>::quiet_NaN()) {
@@ -134,8 +137,9 @@ inline double wall_thickness(double mid_thickness, double twice_depth, double ri
   const bool paired = std::isfinite(pair_thickness);
   const double weight = rim_weight(rim_indicator);
   if (weight > 0.0 && !paired)
-    return std::abs(twice_depth - mid_thickness) <= kRimAgreement * mid_thickness ? mid_thickness
-                                                                                  : nan;
+    return weight < 1.0 && std::abs(twice_depth - mid_thickness) <= kRimAgreement * mid_thickness
+               ? mid_thickness
+               : nan;
   const double reading =
       weight > 0.0 ? (1.0 - weight) * mid_thickness + weight * pair_thickness : mid_thickness;
   // Where walls meet, the pair's wall rather than the junction's larger sphere.
