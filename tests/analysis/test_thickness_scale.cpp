@@ -46,6 +46,21 @@ analysis::ThicknessResult measure(const geometry::SurfaceMesh& mesh, double h0, 
       analysis::prepare_triangles(mesh.vertices(), mesh.faces(), "part"), options);
 }
 
+/// The noisy copy of a labelled part's fine export (at least `min_faces`; every vertex moved
+/// along its normal by a Gaussian of σ = `sigma_ratio`·t, seed 1, as the bench makes it),
+/// measured with h0 = min-thickness = kLimitRatio·t.
+struct NoisyRun {
+  testing::LabelledPart part;
+  analysis::ThicknessResult result;
+};
+NoisyRun measure_noisy_export(const std::string& name, long min_faces, double sigma_ratio) {
+  NoisyRun run{testing::fine_export(name, min_faces), {}};
+  const double t = run.part.nominal_wall;
+  run.result = measure(testing::with_normal_noise(run.part.mesh, sigma_ratio * t, 1),
+                       kLimitRatio * t, kLimitRatio * t);
+  return run;
+}
+
 bool inside(const Vector3d& x, const Vector3d& lo, const Vector3d& hi) {
   return (x.array() >= lo.array()).all() && (x.array() <= hi.array()).all();
 }
@@ -169,10 +184,9 @@ TEST_CASE("thickness at scale h0: a noisy plate (sigma 3 % of t) reads its wall 
 TEST_CASE("thickness at scale h0: the noisy bracket's 1.5 mm rib is one thin region, "
           "nothing else is",
           "[thickness_scale]") {
-  const testing::LabelledPart part = testing::fine_export("l-bracket", 20000);
-  const double t = part.nominal_wall;
-  const geometry::SurfaceMesh noisy = testing::with_normal_noise(part.mesh, 0.03 * t, 1);
-  const analysis::ThicknessResult result = measure(noisy, kLimitRatio * t, kLimitRatio * t);
+  const NoisyRun run = measure_noisy_export("l-bracket", 20000, 0.03);
+  const testing::LabelledPart& part = run.part;
+  const analysis::ThicknessResult& result = run.result;
   REQUIRE(part.features.size() == 1);
   const geometry::BoundingBox rib = part.features.front().box;
   CAPTURE(result.regions.size(), result.statistics.median);
@@ -198,10 +212,9 @@ TEST_CASE("thickness at scale h0: the noisy taper's thin end is its one thin reg
   // taper only below kRimFull (features/wall_thickness.hpp, kRimAgreement). Read as a wall,
   // it gave a false region at the thick end and spread into the thin end's region (minimum
   // 1.08 instead of 2.0).
-  const testing::LabelledPart part = testing::fine_export("taper", 50000);
-  const double t = part.nominal_wall;
-  const geometry::SurfaceMesh noisy = testing::with_normal_noise(part.mesh, 0.03 * t, 1);
-  const analysis::ThicknessResult result = measure(noisy, kLimitRatio * t, kLimitRatio * t);
+  const NoisyRun run = measure_noisy_export("taper", 50000, 0.03);
+  const double t = run.part.nominal_wall;
+  const analysis::ThicknessResult& result = run.result;
   CAPTURE(result.regions.size(), result.statistics.median);
   REQUIRE(result.regions.size() == 1);
   const analysis::ThinRegion& region = result.regions.front();
